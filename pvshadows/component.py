@@ -1,0 +1,433 @@
+"""``pl.shadows``: the PyVista plotter component users call."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from numbers import Integral, Real
+
+import numpy as np
+import pyvista as pv
+import vtk
+
+from pvshadows.frame import RendererShadows
+from pvshadows.lights import light_kind, light_pose
+from pvshadows.measure import Measurement, compare
+from pvshadows.planner import SERVES, LightPlan
+from pvshadows.probe import read_visibility
+from pvshadows.reference import SceneMesh, ViewSpec, trace_reference
+from pvshadows.report import FrameReport
+from pvshadows.scene import vtk_id, world_points
+from pvshadows.settings import ShadowSettings, validated
+from pvshadows.snapshot import SceneReader
+
+
+class ShadowsComponent:
+    """Shadows from every light of a PyVista plotter: ``pl.shadows``.
+
+    Installed as the ``shadows`` plotter component, so every
+    :class:`pyvista.Plotter` has it once pvshadows is installed.
+
+    Parameters
+    ----------
+    plotter : pyvista.Plotter
+        The plotter.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> import pvshadows
+    >>> pl = pv.Plotter(off_screen=True, lighting="none")
+    >>> _ = pl.add_mesh(pv.Plane(i_size=10, j_size=10))
+    >>> _ = pl.add_mesh(pv.Sphere(center=(0, 0, 1)))
+    >>> pl.add_light(pv.Light(position=(0, 0, 3), positional=True, cone_angle=180))
+    >>> pl.shadows.enable()
+    >>> image = pl.screenshot(return_img=True)
+    >>> print(pl.shadows.last_frame.lights[0].technique)
+    cubemap
+    """
+
+    def __init__(self, plotter: pv.Plotter) -> None:
+        self._plotter = plotter
+        self._defaults = ShadowSettings()
+        self._per_light: dict[str, ShadowSettings] = {}
+        self._lights: set[str] | None = None
+        self._reader = SceneReader(self._actor_name)
+        self._renderers: list[RendererShadows] = []
+
+    # -- enabling --------------------------------------------------------------------------
+
+    @property
+    def enabled(self) -> bool:
+        """Whether shadows are on."""
+        return bool(self._renderers)
+
+    def enable(
+        self,
+        technique: str = "auto",
+        *,
+        lights: Iterable[vtk.vtkLight] | None = None,
+        **settings: object,
+    ) -> None:
+        """Turn shadows on for every light (or the given ones).
+
+        Parameters
+        ----------
+        technique : str, default: "auto"
+            ``"auto"`` lets pvshadows choose per light (``"cubemap"`` for
+            point lights), or name one technique for all lights.
+        lights : iterable of pyvista.Light, optional
+            Only these lights cast shadows. By default every light does.
+        **settings
+            Defaults for every light: ``resolution``, ``filter``,
+            ``pcf_taps``, ``passes``, ``bias``, ``slope_bias``,
+            ``normal_offset`` (see :class:`pvshadows.settings.ShadowSettings`).
+
+        Raises
+        ------
+        ValueError, TypeError
+            For a bad setting (naming it and what is allowed), a light that
+            is not in this plotter, or a mesh that cannot cast shadows.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> import pvshadows
+        >>> pl = pv.Plotter(off_screen=True)
+        >>> pl.shadows.enable(filter="hard", resolution=512)
+        >>> pl.shadows.enabled
+        True
+        """
+        defaults = validated(ShadowSettings(), technique=technique, **settings)
+        chosen = None
+        if lights is not None:
+            chosen = {vtk_id(self._check_light(light, "lights")) for light in lights}
+        self._check_scene()
+        self._defaults, self._lights = defaults, chosen
+        if not self._renderers:
+            self._renderers = [
+                RendererShadows(renderer, self._settings_for, self._reader)
+                for renderer in self._plotter.renderers
+            ]
+        self._plotter.render()
+
+    def disable(self) -> None:
+        """Turn shadows off and release every GPU resource they used.
+
+        A screenshot afterwards is identical to one of a plotter that never
+        had shadows.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> import pvshadows
+        >>> pl = pv.Plotter(off_screen=True)
+        >>> pl.shadows.enable()
+        >>> pl.shadows.disable()
+        >>> pl.shadows.enabled
+        False
+        """
+        for renderer in self._renderers:
+            renderer.detach()
+        self._renderers = []
+        if self._plotter.render_window is not None:
+            self._plotter.render()
+
+    def configure(self, light: vtk.vtkLight, **settings: object) -> None:
+        """Set the shadow settings of one light.
+
+        Parameters
+        ----------
+        light : pyvista.Light
+            A light of this plotter.
+        **settings
+            ``technique``, ``resolution``, ``filter``, ``pcf_taps``,
+            ``passes``, ``bias``, ``slope_bias``, ``normal_offset``.
+
+        Raises
+        ------
+        ValueError, TypeError
+            Naming the bad argument and the allowed values.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> import pvshadows
+        >>> pl = pv.Plotter(off_screen=True, lighting="none")
+        >>> bulb = pv.Light(position=(0, 0, 3), positional=True, cone_angle=180)
+        >>> pl.add_light(bulb)
+        >>> pl.shadows.configure(bulb, filter="pcf", pcf_taps=4, resolution=2048)
+        """
+        self._check_light(light, "light")
+        current = self._per_light.get(vtk_id(light), self._defaults)
+        updated = validated(current, **settings)
+        kind = light_kind(light)
+        if updated.technique != "auto" and kind not in SERVES[updated.technique]:
+            allowed = ", ".join(k.value for k in SERVES[updated.technique])
+            msg = (
+                f"technique={updated.technique!r} cannot serve this {kind.value} light; "
+                f"it serves {allowed} lights"
+            )
+            raise ValueError(msg)
+        self._per_light[vtk_id(light)] = updated
+        self._plotter.render()
+
+    def settings(self, light: vtk.vtkLight) -> ShadowSettings:
+        """Return the settings a light casts its shadows with.
+
+        Parameters
+        ----------
+        light : pyvista.Light
+            A light of this plotter.
+
+        Returns
+        -------
+        ShadowSettings
+            Its settings (the defaults of :meth:`enable` unless configured).
+        """
+        self._check_light(light, "light")
+        return self._per_light.get(vtk_id(light), self._defaults)
+
+    def set_caster(self, actor: vtk.vtkActor, cast: bool = True) -> None:
+        """Choose whether an actor casts shadows (all do by default).
+
+        Parameters
+        ----------
+        actor : pyvista.Actor
+            The actor.
+        cast : bool, default: True
+            ``False`` to let light pass through it.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> import pvshadows
+        >>> pl = pv.Plotter(off_screen=True)
+        >>> ground = pl.add_mesh(pv.Plane())
+        >>> pl.shadows.set_caster(ground, False)
+        """
+        self._reader.casting[vtk_id(self._check_actor(actor, cast))] = bool(cast)
+
+    def set_receiver(self, actor: vtk.vtkActor, receive: bool = True) -> None:
+        """Choose whether an actor shows shadows (all lit actors do by default).
+
+        Parameters
+        ----------
+        actor : pyvista.Actor
+            The actor.
+        receive : bool, default: True
+            ``False`` to draw it fully lit.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> import pvshadows
+        >>> pl = pv.Plotter(off_screen=True)
+        >>> label = pl.add_mesh(pv.Sphere())
+        >>> pl.shadows.set_receiver(label, False)
+        """
+        self._reader.receiving[vtk_id(self._check_actor(actor, receive))] = bool(receive)
+
+    # -- what happened and how right it was ------------------------------------------------
+
+    @property
+    def last_frame(self) -> FrameReport:
+        """What ran in the last frame: per light, its technique and each pass with its GPU time.
+
+        Returns
+        -------
+        pvshadows.report.FrameReport
+            Printable; ``passes_run`` counts the passes that ran.
+        """
+        report = FrameReport()
+        for renderer in self._renderers:
+            report.lights.extend(renderer.last_frame.lights)
+        return report
+
+    def visibility(self, light: vtk.vtkLight | None = None) -> np.ndarray:
+        """Return how much of a light reaches the surface seen in each pixel.
+
+        The frame is drawn once more with the receivers showing that light's
+        visibility instead of their colour (the same maps, camera and
+        window), then drawn normally again.
+
+        Parameters
+        ----------
+        light : pyvista.Light, optional
+            A shadowed light; by default the first one of the frame.
+
+        Returns
+        -------
+        numpy.ndarray
+            float32 ``(H, W)`` in [0, 1], row 0 at the top, NaN where the
+            pixel shows no receiving surface. 0 where the visible side faces
+            away from the light.
+
+        Raises
+        ------
+        ValueError
+            If the light cast no shadow in the last frame.
+        """
+        renderer, plan = self._plan_of(light)
+        return read_visibility(self._plotter, renderer.renderer, plan.vtk_index, renderer)
+
+    def reference(
+        self, light: vtk.vtkLight | None = None, *, light_size: float = 0.0, samples: int = 1
+    ) -> np.ndarray:
+        """Return the exact visibility of a light per pixel, by ray casting.
+
+        Parameters
+        ----------
+        light : pyvista.Light, optional
+            A light of this plotter; by default the first shadowed one.
+        light_size : float, default: 0.0
+            Radius of a spherical emitter (point and spot lights, world
+            units) or angular radius in degrees (directional lights); 0 for
+            hard shadows.
+        samples : int, default: 1
+            Shadow rays per pixel (more than one needs ``light_size > 0``).
+
+        Returns
+        -------
+        numpy.ndarray
+            float32 ``(H, W)`` like :meth:`visibility`.
+        """
+        return self._trace(light, light_size=light_size, samples=samples).visibility
+
+    def measure(self, light: vtk.vtkLight | None = None, **reference: object) -> Measurement:
+        """Compare :meth:`visibility` with :meth:`reference` on the current frame.
+
+        Parameters
+        ----------
+        light : pyvista.Light, optional
+            A shadowed light; by default the first one.
+        **reference
+            ``light_size`` and ``samples`` for a soft-shadow reference.
+
+        Returns
+        -------
+        pvshadows.measure.Measurement
+            Share of lit-side pixels whose shadow class disagrees, false and
+            missed shadow shares, and the RMSE of visibility.
+        """
+        shown = self.visibility(light)
+        traced = self._trace(light, **reference)
+        return compare(shown, traced)
+
+    def __plotter_close__(self) -> None:
+        self.disable()
+
+    def __plotter_deep_clean__(self) -> None:
+        self.disable()
+
+    # -- helpers ---------------------------------------------------------------------------
+
+    def _settings_for(self, light: vtk.vtkLight) -> ShadowSettings | None:
+        key = vtk_id(light)
+        if self._lights is not None and key not in self._lights:
+            return None
+        return self._per_light.get(key, self._defaults)
+
+    def _actor_name(self, actor: vtk.vtkActor) -> str:
+        key = vtk_id(actor)
+        for name, candidate in self._plotter.actors.items():
+            if vtk_id(candidate) == key:
+                return f"actor {name!r}"
+        return "an actor"
+
+    def _all_lights(self) -> list[tuple[vtk.vtkRenderer, vtk.vtkLight]]:
+        found = []
+        for renderer in self._plotter.renderers:
+            lights = renderer.GetLights()
+            lights.InitTraversal()
+            found.extend((renderer, lights.GetNextItem()) for _ in range(lights.GetNumberOfItems()))
+        return found
+
+    def _check_light(self, light: object, argument: str) -> vtk.vtkLight:
+        if not isinstance(light, vtk.vtkLight):
+            msg = f"{argument} must be a pyvista.Light of this plotter, got {type(light).__name__}"
+            raise TypeError(msg)
+        if vtk_id(light) not in {vtk_id(found) for _, found in self._all_lights()}:
+            msg = (
+                f"{argument}: this light is not in the plotter; "
+                "add it first with pl.add_light(light)"
+            )
+            raise ValueError(msg)
+        light_pose(light)
+        return light
+
+    def _check_actor(self, actor: object, flag: object) -> vtk.vtkActor:
+        if not isinstance(actor, vtk.vtkActor):
+            msg = (
+                f"actor must be a pyvista.Actor (what add_mesh returns), got {type(actor).__name__}"
+            )
+            raise TypeError(msg)
+        if not isinstance(flag, bool | np.bool_):
+            msg = f"the flag must be True or False, got {flag!r}"
+            raise TypeError(msg)
+        return actor
+
+    def _check_scene(self) -> None:
+        for _, light in self._all_lights():
+            if light.GetSwitch():
+                light_pose(light)
+        for renderer in self._plotter.renderers:
+            actors = renderer.GetActors()
+            actors.InitTraversal()
+            for _ in range(actors.GetNumberOfItems()):
+                actor = actors.GetNextActor()
+                if actor.GetVisibility() and actor.GetMapper() is not None:
+                    self._reader.triangles_of(actor)
+
+    def _plan_of(self, light: vtk.vtkLight | None) -> tuple[RendererShadows, LightPlan]:
+        if not self._renderers:
+            msg = "shadows are not enabled: call pl.shadows.enable() first"
+            raise ValueError(msg)
+        if all(r.snapshot is None for r in self._renderers):
+            self._plotter.screenshot(return_img=True)
+        for renderer in self._renderers:
+            for plan in renderer.plans:
+                if plan.technique is None:
+                    continue
+                if light is None or vtk_id(plan.light) == vtk_id(light):
+                    return renderer, plan
+        which = "no light" if light is None else "this light"
+        msg = f"{which} cast a shadow in the last frame; see pl.shadows.last_frame for why"
+        raise ValueError(msg)
+
+    def _light_and_renderer(
+        self, light: vtk.vtkLight | None
+    ) -> tuple[vtk.vtkLight, vtk.vtkRenderer]:
+        if light is None:
+            renderer, plan = self._plan_of(None)
+            return plan.light, renderer.renderer
+        self._check_light(light, "light")
+        for renderer, candidate in self._all_lights():
+            if vtk_id(candidate) == vtk_id(light):
+                return candidate, renderer
+        raise AssertionError  # _check_light guarantees the light is in the plotter
+
+    def _trace(self, light: vtk.vtkLight | None, *, light_size: object = 0.0, samples: object = 1):
+        if isinstance(light_size, bool) or not isinstance(light_size, Real):
+            msg = f"light_size must be a number, got {light_size!r}"
+            raise TypeError(msg)
+        if isinstance(samples, bool) or not isinstance(samples, Integral):
+            msg = f"samples must be an int, got {samples!r}"
+            raise TypeError(msg)
+        light, ren = self._light_and_renderer(light)
+        snapshot = self._reader.read(ren)
+        meshes = [
+            SceneMesh(
+                world_points(a.triangles, a.matrix),
+                a.triangles.triangles.astype(np.int64),
+                caster=a.caster,
+                receiver=a.receiver,
+            )
+            for a in snapshot.actors
+        ]
+        width, height = ren.GetSize()
+        camera = ren.GetActiveCamera()
+        matrix = camera.GetCompositeProjectionTransformMatrix(ren.GetTiledAspectRatio(), -1, 1)
+        view = ViewSpec(pv.array_from_vtkmatrix(matrix), int(width), int(height))
+        return trace_reference(
+            meshes, view, light_pose(light), light_size=float(light_size), samples=int(samples)
+        )

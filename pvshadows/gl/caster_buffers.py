@@ -1,0 +1,63 @@
+"""GPU copies of the casters' triangles, shared by every light and technique."""
+
+from __future__ import annotations
+
+import vtk
+
+from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.scene import vtk_id
+from pvshadows.snapshot import ActorState
+
+
+class CasterBuffers:
+    """Uploads each caster's triangles once per change of its data.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context owns the buffers.
+    """
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._window = window
+        self._buffers: dict[str, tuple[int, TriangleBuffers]] = {}
+
+    def get(self, state: ActorState) -> TriangleBuffers:
+        """Return the buffers of a caster, uploading them if its data changed.
+
+        Parameters
+        ----------
+        state : ActorState
+            The caster this frame.
+
+        Returns
+        -------
+        TriangleBuffers
+            Its triangles on the GPU.
+        """
+        key = vtk_id(state.actor)
+        version = state.triangles.version
+        cached = self._buffers.get(key)
+        if cached is not None and cached[0] == version:
+            return cached[1]
+        if cached is not None:
+            cached[1].release()
+        buffers = TriangleBuffers(self._window, state.triangles.points, state.triangles.triangles)
+        self._buffers[key] = (version, buffers)
+        return buffers
+
+    def keep_only(self, states: list[ActorState]) -> None:
+        """Release the buffers of actors that are no longer casters.
+
+        Parameters
+        ----------
+        states : list of ActorState
+            The casters of this frame.
+        """
+        alive = {vtk_id(s.actor) for s in states}
+        for key in set(self._buffers) - alive:
+            self._buffers.pop(key)[1].release()
+
+    def release(self) -> None:
+        """Release every buffer."""
+        self.keep_only([])

@@ -1,0 +1,166 @@
+"""GLSL sources from the ``glsl/`` folder, compiled through VTK's shader cache.
+
+Shaders live in files, one per stage and purpose. A program is assembled
+from them with ``#define`` lines, so each program holds only the code its
+light and filter need, and compiled by VTK (``vtkOpenGLShaderCache``), which
+keeps VTK's idea of the bound program true.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from importlib import resources
+from pathlib import Path
+
+import vtk
+
+#: The first line of every program pvshadows compiles itself.
+GLSL_VERSION = "#version 150"
+
+
+class ShaderCompileError(RuntimeError):
+    """A shader did not compile or link; the message holds the driver's log."""
+
+
+def glsl_dir() -> Path:
+    """Return the folder that holds the shader sources.
+
+    Returns
+    -------
+    pathlib.Path
+        ``pvshadows/glsl`` inside an installed wheel, or the repository's
+        top-level ``glsl/`` in a source checkout.
+
+    Examples
+    --------
+    >>> from pvshadows.gl.programs import glsl_dir
+    >>> (glsl_dir() / "distance_depth.frag").is_file()
+    True
+    """
+    packaged = Path(str(resources.files("pvshadows"))) / "glsl"
+    if packaged.is_dir():
+        return packaged
+    return Path(__file__).resolve().parents[2] / "glsl"
+
+
+@cache
+def glsl_source(name: str) -> str:
+    """Return the text of one file in ``glsl/``.
+
+    Parameters
+    ----------
+    name : str
+        File name, for example ``"cube_depth.geom"``.
+
+    Returns
+    -------
+    str
+        The file's text.
+
+    Examples
+    --------
+    >>> from pvshadows.gl.programs import glsl_source
+    >>> "gl_FragDepth" in glsl_source("distance_depth.frag")
+    True
+    """
+    return (glsl_dir() / name).read_text(encoding="utf-8")
+
+
+def with_defines(source: str, defines: dict[str, object] | None = None) -> str:
+    r"""Put the version line and ``#define`` lines in front of a stage's source.
+
+    Parameters
+    ----------
+    source : str
+        Source starting with ``//VTK::System::Dec``.
+    defines : dict, optional
+        Macro names and values; ``None`` or ``True`` values define the name
+        alone.
+
+    Returns
+    -------
+    str
+        Complete stage source.
+
+    Examples
+    --------
+    >>> from pvshadows.gl.programs import with_defines
+    >>> print(with_defines("//VTK::System::Dec\nvoid main() {}", {"TAPS": 4}))
+    #version 150
+    #define TAPS 4
+    void main() {}
+    """
+    lines = [GLSL_VERSION]
+    for name, value in (defines or {}).items():
+        lines.append(
+            f"#define {name}" if value is None or value is True else f"#define {name} {value}"
+        )
+    return source.replace("//VTK::System::Dec", "\n".join(lines), 1)
+
+
+def compile_program(
+    window: vtk.vtkOpenGLRenderWindow,
+    vertex: str,
+    fragment: str,
+    geometry: str = "",
+) -> vtk.vtkShaderProgram:
+    """Compile, link and bind a program in the window's context.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose shader cache compiles and binds the program.
+    vertex, fragment, geometry : str
+        Complete stage sources (see :func:`with_defines`); ``geometry`` may
+        be empty.
+
+    Returns
+    -------
+    vtk.vtkShaderProgram
+        The compiled program, bound. The caller releases it with
+        ``ReleaseGraphicsResources(window)``.
+
+    Raises
+    ------
+    ShaderCompileError
+        With each failing stage's log, when compiling or linking fails.
+        Nothing is printed on the console.
+    """
+    program = vtk.vtkShaderProgram()
+    program.GetVertexShader().SetSource(vertex)
+    program.GetFragmentShader().SetSource(fragment)
+    program.GetGeometryShader().SetSource(geometry)
+    shown = vtk.vtkObject.GetGlobalWarningDisplay()
+    vtk.vtkObject.GlobalWarningDisplayOff()
+    try:
+        ready = window.GetShaderCache().ReadyShaderProgram(program)
+    finally:
+        vtk.vtkObject.SetGlobalWarningDisplay(shown)
+    if ready is None or not program.GetCompiled():
+        stages = {
+            "vertex": program.GetVertexShader(),
+            "geometry": program.GetGeometryShader(),
+            "fragment": program.GetFragmentShader(),
+        }
+        logs = [
+            f"{stage} shader:\n{shader.GetError()}"
+            for stage, shader in stages.items()
+            if shader.GetError()
+        ]
+        if program.GetError():
+            logs.append(f"link:\n{program.GetError()}")
+        raise ShaderCompileError("pvshadows could not build a shader program.\n" + "\n".join(logs))
+    return program
+
+
+def bind_program(window: vtk.vtkOpenGLRenderWindow, program: vtk.vtkShaderProgram) -> None:
+    """Bind a compiled program through VTK's shader cache.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose cache binds it.
+    program : vtk.vtkShaderProgram
+        A program from :func:`compile_program`.
+    """
+    window.GetShaderCache().ReadyShaderProgram(program)

@@ -1,0 +1,1 @@
+"""Passes that write shadow maps; the shading that reads them lives in :mod:`pvshadows.shading`."""

@@ -1,0 +1,191 @@
+"""The depth-cube pass for point lights: one layered draw, or one draw per face."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import vtk
+
+from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.gl.programs import compile_program, glsl_source, with_defines
+from pvshadows.gl.textures import DepthCube
+from pvshadows.gl.timing import PassTimer
+from pvshadows.passes.gl_state import depth_only_state
+from pvshadows.report import PassReport
+from pvshadows.transforms import column_major, cube_face_projections, faces_touching_box
+
+
+@dataclass
+class CubeCaster:
+    """One caster as the cube pass draws it.
+
+    Attributes
+    ----------
+    buffers : TriangleBuffers
+        Its triangles on the GPU, in shifted model coordinates.
+    model_to_light : numpy.ndarray
+        ``(4, 4)`` float64 from those coordinates to world axes centred on
+        the light.
+    face_mask : int
+        Bit mask of the faces whose frustum may hold it.
+    """
+
+    buffers: TriangleBuffers
+    model_to_light: np.ndarray
+    face_mask: int
+
+
+def caster_face_mask(box_from_light: np.ndarray) -> int:
+    """Return which cube faces a caster's light-relative bounds may touch.
+
+    Parameters
+    ----------
+    box_from_light : numpy.ndarray
+        ``(2, 3)`` bounds relative to the light.
+
+    Returns
+    -------
+    int
+        Face bit mask (all six when the light is inside the box).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.passes.cube_depth import caster_face_mask
+    >>> caster_face_mask(np.array([[-1.0, -1, -1], [1, 1, 1]]))
+    63
+    """
+    if np.all(box_from_light[0] <= 0.0) and np.all(box_from_light[1] >= 0.0):
+        return 0b111111
+    return faces_touching_box(box_from_light)
+
+
+class CubeDepthPass:
+    """Fills a :class:`~pvshadows.gl.textures.DepthCube` with distance-to-light over ``far``.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context runs the pass.
+    """
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._window = window
+        self._programs: dict[str, vtk.vtkShaderProgram] = {}
+
+    def _program(self, passes: str) -> vtk.vtkShaderProgram:
+        if passes not in self._programs:
+            fragment = with_defines(glsl_source("distance_depth.frag"))
+            if passes == "single":
+                program = compile_program(
+                    self._window,
+                    with_defines(glsl_source("cube_depth.vert")),
+                    fragment,
+                    with_defines(glsl_source("cube_depth.geom")),
+                )
+            else:
+                program = compile_program(
+                    self._window,
+                    with_defines(glsl_source("cube_depth.vert"), {"SIX_PASSES": True}),
+                    fragment,
+                )
+            self._programs[passes] = program
+        return self._programs[passes]
+
+    def render(
+        self,
+        cube: DepthCube,
+        casters: list[CubeCaster],
+        far: float,
+        passes: str,
+        timer: PassTimer,
+    ) -> list[PassReport]:
+        """Render the casters into the cube.
+
+        Parameters
+        ----------
+        cube : DepthCube
+            The target.
+        casters : list of CubeCaster
+            What to draw, with the faces each may touch.
+        far : float
+            Distance that maps to depth 1.
+        passes : {"single", "six"}
+            One layered draw through the geometry shader, or one draw per
+            face with the casters culled against that face's frustum.
+        timer : PassTimer
+            Records each pass's GPU time.
+
+        Returns
+        -------
+        list of PassReport
+            One report per pass, run or skipped; GPU times arrive when the
+            timer collects them after the frame.
+        """
+        face_mask = 0
+        for caster in casters:
+            face_mask |= caster.face_mask
+        projections = cube_face_projections(far * 1e-4, far)
+        program = self._program(passes)
+        records: list[PassReport] = []
+        with depth_only_state(self._window) as gl:
+            self._window.GetShaderCache().ReadyShaderProgram(program)
+            program.SetUniformf("invFar", 1.0 / far)
+            if passes == "single":
+                record = PassReport(
+                    "cube depth (six faces, one draw)", "run", _faces_text(face_mask)
+                )
+                records.append(record)
+                with timer.measure(record):
+                    cube.bind_as_target()
+                    gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
+                    program.SetUniformMatrix4x4v("faceProjection", 6, column_major(projections))
+                    program.SetUniformi("faceMask", face_mask)
+                    for caster in casters:
+                        program.SetUniformMatrix4x4v(
+                            "modelToLight", 1, column_major(caster.model_to_light)
+                        )
+                        caster.buffers.draw(program)
+            else:
+                for face in range(6):
+                    drawn = [c for c in casters if c.face_mask & (1 << face)]
+                    record = PassReport(f"cube face {_FACE_NAMES[face]}", "run")
+                    records.append(record)
+                    with timer.measure(record):
+                        cube.bind_as_target(face)
+                        gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
+                        if not drawn:
+                            record.status, record.detail = (
+                                "skipped",
+                                "no caster in this face's frustum",
+                            )
+                            continue
+                        record.detail = f"{len(drawn)} of {len(casters)} casters"
+                        program.SetUniformMatrix4x4v(
+                            "faceProjection", 1, column_major(projections[face])
+                        )
+                        for caster in drawn:
+                            program.SetUniformMatrix4x4v(
+                                "modelToLight", 1, column_major(caster.model_to_light)
+                            )
+                            caster.buffers.draw(program)
+        return records
+
+    def release(self) -> None:
+        """Release the compiled programs."""
+        for program in self._programs.values():
+            program.ReleaseGraphicsResources(self._window)
+        self._programs.clear()
+
+
+_FACE_NAMES = ("+X", "-X", "+Y", "-Y", "+Z", "-Z")
+
+
+def _faces_text(face_mask: int) -> str:
+    drawn = [name for face, name in enumerate(_FACE_NAMES) if face_mask & (1 << face)]
+    skipped = [name for face, name in enumerate(_FACE_NAMES) if not face_mask & (1 << face)]
+    text = "faces drawn: " + (" ".join(drawn) or "none")
+    if skipped:
+        text += "; skipped (no caster in frustum): " + " ".join(skipped)
+    return text

@@ -1,0 +1,55 @@
+"""Entering and leaving a depth pass without VTK losing track of GL state."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+
+import vtk
+
+from pvshadows.gl.binding import opengl_for
+
+
+@contextmanager
+def depth_only_state(window: vtk.vtkOpenGLRenderWindow, *, cull_front: bool = False) -> Iterator:
+    """Set up GL for writing depth only, and restore VTK's state afterwards.
+
+    Everything goes through ``vtkOpenGLState`` (``Push``/``Pop`` restore the
+    framebuffer bindings, viewport, program and the rest), except depth
+    clamping, which VTK does not track and which is switched back off here.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context runs the pass.
+    cull_front : bool, default: False
+        Draw only back faces (for closed casters: moves self-shadowing
+        error to the unlit side).
+
+    Yields
+    ------
+    module
+        ``OpenGL.GL``, for the pass's own calls.
+    """
+    gl = opengl_for(window)
+    state = window.GetState()
+    state.Push()
+    try:
+        state.vtkglDisable(gl.GL_BLEND)
+        state.vtkglDisable(gl.GL_SCISSOR_TEST)
+        state.vtkglDisable(gl.GL_STENCIL_TEST)
+        if cull_front:
+            state.vtkglEnable(gl.GL_CULL_FACE)
+            state.vtkglCullFace(gl.GL_FRONT)
+        else:
+            state.vtkglDisable(gl.GL_CULL_FACE)
+        state.vtkglEnable(gl.GL_DEPTH_TEST)
+        state.vtkglDepthFunc(gl.GL_LESS)
+        state.vtkglDepthMask(True)
+        state.vtkglColorMask(False, False, False, False)
+        state.vtkglClearDepth(1.0)
+        gl.glEnable(gl.GL_DEPTH_CLAMP)
+        yield gl
+    finally:
+        gl.glDisable(gl.GL_DEPTH_CLAMP)
+        state.Pop()

@@ -1,0 +1,148 @@
+"""Per-light shadow settings and their validation.
+
+Every public call that takes settings goes through :func:`validated`, which
+raises ``ValueError`` or ``TypeError`` naming the argument, the value given
+and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+from numbers import Integral, Real
+
+#: Techniques a light can be given; "auto" lets the planner choose.
+TECHNIQUES = ("auto", "cubemap")
+#: Filters of the map-based techniques.
+FILTERS = ("hard", "pcf")
+#: Ways to fill a depth cube.
+CUBE_PASSES = ("single", "six")
+#: Allowed ``pcf_taps``: a 2x2 or 4x4 grid of hardware-filtered taps.
+PCF_TAPS = (4, 16)
+#: Smallest and largest shadow-map resolution (texels per side of a face).
+RESOLUTION_RANGE = (64, 4096)
+
+
+@dataclass(frozen=True)
+class ShadowSettings:
+    """How one light casts its shadows.
+
+    Attributes
+    ----------
+    technique : str
+        ``"auto"`` (the planner chooses) or ``"cubemap"``.
+    resolution : int
+        Texels per side of each shadow-map face, 64 to 4096.
+    filter : str
+        ``"hard"`` (one compare) or ``"pcf"`` (percentage-closer filtering).
+    pcf_taps : int
+        4 or 16 hardware-filtered taps for ``"pcf"``.
+    passes : str
+        ``"single"`` (one draw, geometry shader writes all six faces) or
+        ``"six"`` (one draw per face) for ``"cubemap"``.
+    bias : float
+        Constant depth bias, in texels (scale-free).
+    slope_bias : float
+        Depth bias per unit of the tangent of the angle of incidence, in
+        texels.
+    normal_offset : float
+        Lookup point moved along the surface normal by this many texels,
+        times the sine of the angle of incidence.
+    """
+
+    technique: str = "auto"
+    resolution: int = 1024
+    filter: str = "pcf"
+    pcf_taps: int = 16
+    passes: str = "single"
+    bias: float = 0.5
+    slope_bias: float = 0.0
+    normal_offset: float = 1.5
+
+
+def _choice(name: str, value: object, allowed: tuple) -> object:
+    if (
+        not isinstance(value, str if isinstance(allowed[0], str) else Integral)
+        or value not in allowed
+    ):
+        msg = f"{name}={value!r} is not allowed; choose one of {', '.join(map(repr, allowed))}"
+        raise (ValueError if isinstance(value, str | Integral) else TypeError)(msg)
+    return value
+
+
+def _resolution(value: object) -> int:
+    if isinstance(value, bool) or not isinstance(value, Integral):
+        low, high = RESOLUTION_RANGE
+        msg = f"resolution must be an int from {low} to {high}, got {value!r}"
+        raise TypeError(msg)
+    low, high = RESOLUTION_RANGE
+    if not low <= int(value) <= high:
+        msg = f"resolution={value} is out of range; it must be from {low} to {high} texels"
+        raise ValueError(msg)
+    return int(value)
+
+
+def _texels(name: str, value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real):
+        msg = f"{name} must be a number of texels (a float from 0 to 100), got {value!r}"
+        raise TypeError(msg)
+    if not (math.isfinite(value) and 0.0 <= value <= 100.0):
+        msg = f"{name}={value} is out of range; it must be from 0 to 100 texels"
+        raise ValueError(msg)
+    return float(value)
+
+
+_CHECKS = {
+    "technique": lambda v: _choice("technique", v, TECHNIQUES),
+    "resolution": _resolution,
+    "filter": lambda v: _choice("filter", v, FILTERS),
+    "pcf_taps": lambda v: _choice("pcf_taps", v, PCF_TAPS),
+    "passes": lambda v: _choice("passes", v, CUBE_PASSES),
+    "bias": lambda v: _texels("bias", v),
+    "slope_bias": lambda v: _texels("slope_bias", v),
+    "normal_offset": lambda v: _texels("normal_offset", v),
+}
+
+
+def validated(base: ShadowSettings, **changes: object) -> ShadowSettings:
+    """Return ``base`` with ``changes`` applied, after checking every value.
+
+    Parameters
+    ----------
+    base : ShadowSettings
+        Settings to start from.
+    **changes
+        Setting names and new values.
+
+    Returns
+    -------
+    ShadowSettings
+        The new settings.
+
+    Raises
+    ------
+    TypeError
+        For an unknown setting name or a value of the wrong type.
+    ValueError
+        For a value out of range or not among the allowed choices.
+
+    Examples
+    --------
+    >>> from pvshadows.settings import ShadowSettings, validated
+    >>> validated(ShadowSettings(), filter="hard").filter
+    'hard'
+    >>> validated(ShadowSettings(), resolution=5000)
+    Traceback (most recent call last):
+    ...
+    ValueError: resolution=5000 is out of range; it must be from 64 to 4096 texels
+    """
+    known = {f.name for f in fields(ShadowSettings)}
+    unknown = sorted(set(changes) - known)
+    if unknown:
+        msg = (
+            f"unknown shadow setting(s) {', '.join(unknown)}; "
+            f"the settings are {', '.join(sorted(known))}"
+        )
+        raise TypeError(msg)
+    checked = {name: _CHECKS[name](value) for name, value in changes.items()}
+    return replace(base, **checked)

@@ -1,0 +1,283 @@
+"""Receivers read the shadow maps in the shaders VTK already builds for them.
+
+Only the lighting code of each receiver's fragment shader changes: for every
+shadowed light, the light's diffuse and specular terms (Phong) or its
+radiance (PBR) are multiplied by that light's visibility. Ambient light and
+unshadowed lights are untouched. The edits are ``vtkShaderProperty``
+replacements applied after VTK's own substitutions, and the values they read
+are the property's custom uniforms, which VTK uploads at every draw, so a
+receiver needs no observer on its mapper and works from its first frame.
+
+Samplers are declared by VTK as ``uniform int NAME;`` custom uniforms (the
+texture unit) and retyped here to the sampler type the lookup needs.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+import vtk
+
+from pvshadows.gl.programs import glsl_source
+from pvshadows.transforms import column_major
+
+#: Name of the custom uniform that switches a frame to showing one light's visibility.
+PROBE_UNIFORM = "pvsProbeLight"
+
+_MAIN = "void main()"
+_VIEW_POSITION = "vec4 vertexVC = vertexVCVSOutput;"
+_PROBE_ANCHOR = "//VTK::Picking::Impl"
+_FACET_NORMAL = (
+    "\n  vec3 pvsFacetVC = cross(dFdx(vertexVC.xyz), dFdy(vertexVC.xyz));\n  float pvsProbe = 0.0;"
+)
+_NORMAL_CHOICE = """
+vec3 pvsGeometricNormal(vec3 facet, vec3 shadingNormal)
+{
+  float size = dot(facet, facet);
+  return size > 0.0 && !isinf(size) ? normalize(facet) : shadingNormal;
+}
+"""
+
+
+@dataclass(frozen=True)
+class LightShading:
+    """How one shadowed light edits a receiver's fragment shader.
+
+    Attributes
+    ----------
+    vtk_index : int
+        The light's index among the renderer's switched-on lights: VTK names
+        its uniforms ``lightColor{vtk_index}`` and so on.
+    visibility : str
+        GLSL expression for the light's visibility; it may use
+        ``vertexVC.xyz`` and ``pvsNormalVC`` (geometric normal facing the
+        camera).
+    samplers : Mapping[str, str]
+        Uniform name to sampler type, for each texture the expression reads.
+    sources : tuple of str
+        Files of ``glsl/`` that define the functions the expression calls.
+    defines : tuple of str
+        Macros that select which of those functions are compiled.
+    """
+
+    vtk_index: int
+    visibility: str
+    samplers: Mapping[str, str] = field(default_factory=dict)
+    sources: tuple[str, ...] = ()
+    defines: tuple[str, ...] = ()
+
+
+def _probe_output(colour: str) -> str:
+    return f"if ({PROBE_UNIFORM} >= 0) {{ fragOutput0 = {colour}; }}\n  {_PROBE_ANCHOR}"
+
+
+def _uses_pbr(actor: vtk.vtkActor) -> bool:
+    return actor.GetProperty().GetInterpolation() == vtk.VTK_PBR
+
+
+def _light_hooks(light: LightShading, pbr: bool) -> list[tuple[str, str]]:
+    i = light.vtk_index
+    visibility = light.visibility.replace(
+        "pvsNormalVC", "pvsGeometricNormal(pvsFacetVC, normalVCVSOutput)"
+    )
+    compute = (
+        f"float pvsVisibility{i} = {visibility};\n"
+        f"  if ({PROBE_UNIFORM} == {i}) {{ pvsProbe = pvsVisibility{i}; }}\n"
+    )
+    if pbr:
+        return [
+            (
+                f"radiance = lightColor{i};",
+                f"{compute}  radiance = lightColor{i} * pvsVisibility{i};",
+            )
+        ]
+    return [
+        (
+            f"diffuse += (df * lightColor{i});",
+            f"{compute}  diffuse += (df * pvsVisibility{i} * lightColor{i});",
+        ),
+        (
+            f"specular += (sf * lightColor{i});",
+            f"specular += (sf * pvsVisibility{i} * lightColor{i});",
+        ),
+    ]
+
+
+def receiver_replacements(
+    actor: vtk.vtkActor, lights: Iterable[LightShading]
+) -> list[tuple[str, str]]:
+    """Return the fragment-shader edits that shadow ``lights`` on ``actor``.
+
+    Parameters
+    ----------
+    actor : vtk.vtkActor
+        A receiver; its property decides between Phong and PBR hooks.
+    lights : iterable of LightShading
+        The shadowed lights.
+
+    Returns
+    -------
+    list of tuple
+        ``(original, replacement)`` pairs, applied after VTK's own
+        substitutions.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.shading import LightShading, receiver_replacements
+    >>> edits = receiver_replacements(pv.Actor(), [LightShading(0, "1.0")])
+    >>> any("pvsVisibility0" in new for _, new in edits)
+    True
+    """
+    lights = list(lights)
+    pbr = _uses_pbr(actor)
+    sources = dict.fromkeys(source for light in lights for source in light.sources)
+    defines = dict.fromkeys(define for light in lights for define in light.defines)
+    functions = "".join(f"#define {name}\n" for name in defines)
+    functions += _NORMAL_CHOICE + "".join(glsl_source(source) for source in sources)
+    edits = [
+        (_MAIN, f"{functions}\n{_MAIN}"),
+        (_VIEW_POSITION, _VIEW_POSITION + _FACET_NORMAL),
+        (
+            _PROBE_ANCHOR,
+            _probe_output("vec4(pvsProbe, 1.0, 0.0, 1.0)"),
+        ),
+    ]
+    for light in lights:
+        edits.extend(_light_hooks(light, pbr))
+        edits.extend(
+            (f"uniform int {name};", f"uniform {kind} {name};")
+            for name, kind in light.samplers.items()
+        )
+    return edits
+
+
+def bystander_replacements() -> list[tuple[str, str]]:
+    """Return the edit for an actor that shows no shadow: black when probing.
+
+    Returns
+    -------
+    list of tuple
+        One ``(original, replacement)`` pair; it changes nothing in a normal
+        frame.
+
+    Examples
+    --------
+    >>> from pvshadows.shading import bystander_replacements
+    >>> len(bystander_replacements())
+    1
+    """
+    return [
+        (
+            _PROBE_ANCHOR,
+            _probe_output("vec4(0.0, 0.0, 0.0, 1.0)"),
+        )
+    ]
+
+
+def set_uniform(uniforms: vtk.vtkUniforms, name: str, value: object) -> None:
+    """Set one custom uniform from a Python value.
+
+    Parameters
+    ----------
+    uniforms : vtk.vtkUniforms
+        A shader property's fragment custom uniforms.
+    name : str
+        Uniform name.
+    value : int, float, sequence of 4 floats, or (4, 4) array
+        ``int`` sets an ``int`` (also a sampler's texture unit), ``float`` a
+        ``float``, four numbers a ``vec4`` and a 4x4 array a ``mat4``.
+
+    Examples
+    --------
+    >>> import vtk
+    >>> from pvshadows.shading import set_uniform
+    >>> uniforms = vtk.vtkShaderProperty().GetFragmentCustomUniforms()
+    >>> set_uniform(uniforms, "pvsLevel", 0.5)
+    >>> uniforms.GetNumberOfUniforms()
+    1
+    """
+    if isinstance(value, bool | int | np.integer):
+        uniforms.SetUniformi(name, int(value))
+    elif isinstance(value, float | np.floating):
+        uniforms.SetUniformf(name, float(value))
+    else:
+        array = np.asarray(value, dtype=np.float64)
+        if array.shape == (4, 4):
+            uniforms.SetUniformMatrix4x4(name, column_major(array).tolist())
+        elif array.shape == (4,):
+            uniforms.SetUniform4f(name, array.astype(np.float32).tolist())
+        else:
+            msg = f"uniform {name}: cannot upload a value of shape {array.shape}"
+            raise TypeError(msg)
+
+
+class ShaderEdits:
+    """The edits and custom uniforms pvshadows has put on one actor.
+
+    Keeps track of exactly what it added, so that removing it leaves the
+    actor's shader property as the user left it (their own replacements and
+    uniforms stay).
+
+    Parameters
+    ----------
+    actor : vtk.vtkActor
+        The actor whose shader property is edited.
+    """
+
+    def __init__(self, actor: vtk.vtkActor) -> None:
+        self.actor = actor
+        self._edits: list[tuple[str, str]] = []
+        self._uniforms: set[str] = set()
+
+    def apply(self, edits: list[tuple[str, str]]) -> None:
+        """Make the actor's pvshadows edits exactly ``edits`` (a no-op when unchanged).
+
+        Parameters
+        ----------
+        edits : list of tuple
+            ``(original, replacement)`` pairs.
+        """
+        if edits == self._edits:
+            return
+        prop = self.actor.GetShaderProperty()
+        for original, _ in self._edits:
+            prop.ClearFragmentShaderReplacement(original, False)
+        for original, replacement in edits:
+            prop.AddFragmentShaderReplacement(original, False, replacement, False)
+        self._edits = list(edits)
+
+    def set_uniforms(self, values: Mapping[str, object]) -> None:
+        """Set custom uniforms, and remove the ones set before but absent now.
+
+        Parameters
+        ----------
+        values : Mapping
+            Uniform names and values (see :func:`set_uniform`).
+        """
+        uniforms = self.actor.GetShaderProperty().GetFragmentCustomUniforms()
+        for name in self._uniforms - set(values):
+            uniforms.RemoveUniform(name)
+        for name, value in values.items():
+            set_uniform(uniforms, name, value)
+        self._uniforms = set(values)
+
+    def set_probe(self, light_index: int) -> None:
+        """Switch the probe: ``-1`` for normal shading, else show that light's visibility.
+
+        Parameters
+        ----------
+        light_index : int
+            VTK index of the light to show, or ``-1``.
+        """
+        self.actor.GetShaderProperty().GetFragmentCustomUniforms().SetUniformi(
+            PROBE_UNIFORM, light_index
+        )
+        self._uniforms.add(PROBE_UNIFORM)
+
+    def remove(self) -> None:
+        """Take every pvshadows edit and uniform off the actor."""
+        self.apply([])
+        self.set_uniforms({})
