@@ -1,0 +1,7 @@
+"""``python -m pvshadows``: the same as the ``pvshadows`` command."""
+
+import sys
+
+from pvshadows.cli import main
+
+sys.exit(main())

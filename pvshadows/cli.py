@@ -1,0 +1,108 @@
+"""The ``pvshadows`` command: ``demo``, ``info`` and ``bench``."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+
+def _prefer_egl_without_display() -> None:
+    """Open EGL windows directly when there is no display, instead of trying X first."""
+    if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
+        if sys.platform.startswith("linux"):
+            os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+
+
+def _size(text: str) -> tuple[int, int]:
+    try:
+        width, height = (int(part) for part in text.lower().split("x"))
+    except ValueError:
+        msg = f"size must look like 800x600, got {text!r}"
+        raise argparse.ArgumentTypeError(msg) from None
+    if width < 1 or height < 1:
+        msg = f"size must be positive, got {text!r}"
+        raise argparse.ArgumentTypeError(msg)
+    return width, height
+
+
+def _demo(args: argparse.Namespace) -> int:
+    from pvshadows.demo import render_demo
+
+    path = render_demo(args.out, window_size=args.size)
+    print(f"wrote {path}")
+    return 0
+
+
+def _info(args: argparse.Namespace) -> int:
+    from pvshadows.info import capabilities
+
+    print(capabilities())
+    return 0
+
+
+def _bench(args: argparse.Namespace) -> int:
+    from pvshadows.bench import cubemap_cases, plot_frontier, run_bench, write_table
+
+    cases = cubemap_cases()
+    if args.quick:
+        cases = cubemap_cases(resolutions=(256,), passes=("single",))
+    rows = run_bench(cases, frames=args.frames, window_size=args.size)
+    out = Path(args.out)
+    write_table(rows, out)
+    plot_frontier(rows, out / "frontier.png")
+    print(f"wrote {out / 'bench.csv'}, {out / 'bench.md'} and {out / 'frontier.png'}")
+    return 0
+
+
+def parser() -> argparse.ArgumentParser:
+    """Return the command-line parser.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        Parser with the ``demo``, ``info`` and ``bench`` commands.
+
+    Examples
+    --------
+    >>> from pvshadows.cli import parser
+    >>> parser().parse_args(["demo", "--out", "x.png"]).out
+    'x.png'
+    """
+    main_parser = argparse.ArgumentParser(
+        prog="pvshadows", description="Real-time shadows for PyVista, measured against ray tracing."
+    )
+    commands = main_parser.add_subparsers(dest="command", required=True)
+    demo = commands.add_parser("demo", help="render the demo scene with shadows to a PNG")
+    demo.add_argument("--out", default="shadows.png", help="PNG to write (default shadows.png)")
+    demo.add_argument("--size", type=_size, default=(1024, 768), help="window size, e.g. 800x600")
+    demo.set_defaults(run=_demo)
+    info = commands.add_parser("info", help="what this OpenGL context offers pvshadows")
+    info.set_defaults(run=_info)
+    bench = commands.add_parser("bench", help="error and time ratio of every technique and setting")
+    bench.add_argument("--out", required=True, help="folder for bench.csv, bench.md, frontier.png")
+    bench.add_argument("--frames", type=int, default=10, help="frames per median (default 10)")
+    bench.add_argument("--size", type=_size, default=(800, 600), help="window size (800x600)")
+    bench.add_argument("--quick", action="store_true", help="one case only, to check it runs")
+    bench.set_defaults(run=_bench)
+    return main_parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``pvshadows`` command.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status.
+    """
+    args = parser().parse_args(argv)
+    _prefer_egl_without_display()
+    return args.run(args)
