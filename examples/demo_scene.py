@@ -18,7 +18,11 @@ style = {"ambient": 0.15, "diffuse": 0.85, "specular": 0.2, "smooth_shading": Tr
 pl.add_mesh(pv.Plane(i_size=10, j_size=10), color="#d9d4c7", **style)
 pl.add_mesh(pv.Box(bounds=(-2.6, -1.4, -0.9, 0.3, 1.3, 2.1)), color="#c0504d", **style)
 pl.add_mesh(pv.Sphere(radius=0.7, center=(1.6, 1.4, 0.7)), color="#4f81bd", **style)
-pl.add_mesh(pv.Cylinder(center=(0.9, -2.1, 0.9), direction=(0, 0, 1), radius=0.45, height=1.8), color="#9bbb59", **style)
+pl.add_mesh(
+    pv.Cylinder(center=(0.9, -2.1, 0.9), direction=(0, 0, 1), radius=0.45, height=1.8),
+    color="#9bbb59",
+    **style,
+)
 
 # %%
 # A point light among the objects, and one line for shadows.

@@ -13,6 +13,10 @@
 //   posVC       the fragment's position in view coordinates
 //   normalVC    its geometric normal, facing the camera
 
+// Cosine of incidence below which a surface counts as facing away (as in
+// pvshadows.reference.MIN_INCIDENCE): a light in a surface's plane does not light it.
+const float PVS_MIN_INCIDENCE = 1e-4;
+
 struct PvsCubePoint
 {
   vec3 q;        // lookup position, offset along the normal, relative to the light
@@ -29,7 +33,7 @@ PvsCubePoint pvsCubePoint(mat4 viewToLight, vec4 params, float slopeBias, vec3 p
   vec3 n = normalize(mat3(viewToLight) * normalVC);
   float dist = max(length(p), 1e-30);
   float cosTheta = dot(n, -p / dist);
-  point.lit = cosTheta > 0.0 ? 1.0 : 0.0;
+  point.lit = cosTheta > PVS_MIN_INCIDENCE ? 1.0 : 0.0;
   cosTheta = max(cosTheta, 1e-4);
   float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
   point.texel = dist * params.y;

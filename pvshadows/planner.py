@@ -127,7 +127,11 @@ def plan_frame(
         if not casters:
             plan.notes.append("no actor casts shadows")
             continue
-        plan.pose = light_pose(light)
+        try:
+            plan.pose = light_pose(light)
+        except ValueError as error:
+            plan.notes.append(f"casts nothing: {error}")
+            continue
         plan.casters = casters
         plan.technique = technique
     return plans

@@ -47,6 +47,15 @@ where a 1000 pixel view of the whole scene has pixels of ``1e-3``.
 MAX_SAMPLES = 4096
 """Largest number of shadow rays per pixel."""
 
+MIN_INCIDENCE = 1e-4
+"""Smallest cosine of the angle between a surface's normal and the light for it to be lit.
+
+A surface that the light grazes at less than about 0.006 degrees receives less
+than 1e-4 of full irradiance; it counts as facing away, here and in the
+shaders (``glsl/``), so that a light lying in a surface's own plane does not
+light it by the sign of a rounding error.
+"""
+
 _BOX_MARGIN = 1e-3
 """Margin around the scene's bounds, as a fraction of its diagonal, where primary rays start."""
 
@@ -593,9 +602,9 @@ class _Emitter:
     def lit_side(self, points: np.ndarray, normals: np.ndarray) -> np.ndarray:
         """Whether each surface faces the light centre and lies inside the cone."""
         if self.kind is LightKind.DIRECTIONAL:
-            return _dot(normals, -self.direction) > 0.0
+            return _dot(normals, -self.direction) > MIN_INCIDENCE
         to_light, _ = _unit(self.position - points)
-        facing = _dot(normals, to_light) > 0.0
+        facing = _dot(normals, to_light) > MIN_INCIDENCE
         return facing & (_dot(-to_light, self.direction) >= self.cos_cone)
 
     def sample_rays(

@@ -48,6 +48,14 @@ class ShadowSettings:
     normal_offset : float
         Lookup point moved along the surface normal by this many texels,
         times the sine of the angle of incidence.
+
+    Notes
+    -----
+    The three biases are in texels of the shadow map at the receiver's
+    distance, so the same values work at every scene scale and resolution.
+    The defaults were chosen by measurement against ray tracing: below a
+    normal offset of 0.5 texel a bare plane lit at grazing incidence shows
+    acne; above 1 texel shadow outlines grow measurably.
     """
 
     technique: str = "auto"
@@ -56,8 +64,8 @@ class ShadowSettings:
     pcf_taps: int = 16
     passes: str = "single"
     bias: float = 0.5
-    slope_bias: float = 0.0
-    normal_offset: float = 1.5
+    slope_bias: float = 0.5
+    normal_offset: float = 0.75
 
 
 def _choice(name: str, value: object, allowed: tuple) -> object:

@@ -1,0 +1,69 @@
+"""The pvshadows command: info, demo and bench, run as a user runs them."""
+
+import csv
+import subprocess
+import sys
+
+import numpy as np
+import pyvista as pv
+
+
+def pvshadows(*args, cwd=None):
+    result = subprocess.run(
+        [sys.executable, "-m", "pvshadows", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        timeout=600,
+    )
+    assert result.returncode == 0, result.stderr
+    return result.stdout
+
+
+def test_info_reports_the_context_and_the_techniques():
+    out = pvshadows("info")
+    for words in (
+        "renderer",
+        "OpenGL",
+        "geometry shaders  yes",
+        "max cube map face",
+        "stencil bits",
+        "cubemap (passes='single') available",
+        "cubemap (passes='six')    available",
+    ):
+        assert words in out
+
+
+def test_demo_writes_a_picture_with_shadows(tmp_path):
+    out = pvshadows("demo", "--out", str(tmp_path / "shadows.png"), "--size", "400x300")
+    assert "wrote" in out
+    image = pv.read(tmp_path / "shadows.png")
+    assert image.dimensions[:2] == (400, 300)
+    rgb = np.asarray(image.point_data.active_scalars)[:, :3].astype(int)
+    # The ground is light; its shadows are dark grey, well below the lit ground.
+    assert np.mean(rgb.max(axis=1) < 60) > 0.02
+
+
+def test_bench_writes_table_and_frontier(tmp_path):
+    out = pvshadows(
+        "bench", "--out", str(tmp_path), "--quick", "--frames", "3", "--size", "320x240"
+    )
+    assert "[2/2]" in out
+    rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
+    assert [r["setting"] for r in rows] == [
+        "resolution=256 filter=hard passes=single",
+        "resolution=256 filter=pcf passes=single",
+    ]
+    for row in rows:
+        assert 0 <= float(row["misclassified"]) < 0.05
+        assert float(row["ratio_moving"]) > 0.5
+    assert (tmp_path / "bench.md").read_text().count("| cubemap |") == 2
+    assert (tmp_path / "frontier.png").stat().st_size > 10_000
+
+
+def test_bad_command_line_is_refused():
+    result = subprocess.run(
+        [sys.executable, "-m", "pvshadows", "demo", "--size", "big"], capture_output=True, text=True
+    )
+    assert result.returncode == 2
+    assert "size must look like 800x600" in result.stderr
