@@ -104,48 +104,57 @@ def cubemap_cases(
     ]
 
 
-class FrameClock:
-    """Times whole frames of one scene, GPU work included.
+class PairedClock:
+    """Times frames of a shadowed scene against the same scene without shadows.
+
+    Frames of the two scenes alternate, so slow drifts of a shared machine
+    hit both alike and cancel in the ratio.
 
     Parameters
     ----------
-    scene : StandardScene
-        The scene whose window is drawn.
+    shadowed, plain : StandardScene
+        Two copies of the same scene; only ``shadowed`` has shadows on.
     """
 
-    def __init__(self, scene: StandardScene) -> None:
-        self._scene = scene
-        self._window = scene.plotter.ren_win
-        self._gl = opengl_for(self._window)
-        self._home = np.array(scene.light.position, dtype=np.float64)
+    def __init__(self, shadowed: StandardScene, plain: StandardScene) -> None:
+        self._scenes = (plain, shadowed)
+        self._gl = opengl_for(shadowed.plotter.ren_win)
+        self._homes = [np.array(scene.light.position, dtype=np.float64) for scene in self._scenes]
 
-    def frames(self, count: int, *, moving: bool) -> list[float]:
-        """Draw ``count`` frames and return each one's time in milliseconds.
+    def _frame(self, scene: StandardScene, home: np.ndarray, nudge: float) -> float:
+        scene.light.position = tuple(home + nudge * scene.scale)
+        window = scene.plotter.ren_win
+        start = time.perf_counter()
+        window.Render()
+        window.MakeCurrent()
+        self._gl.glFinish()
+        return (time.perf_counter() - start) * 1e3
+
+    def medians(self, count: int, *, moving: bool) -> tuple[float, float]:
+        """Return the median frame times (plain, shadowed) in milliseconds.
 
         Parameters
         ----------
         count : int
-            Frames to time (two more are drawn first, untimed).
+            Timed frames of each scene (two more of each are drawn first).
         moving : bool
             Nudge the light by a hair every frame, so no map can be reused.
 
         Returns
         -------
-        list of float
-            Frame times.
+        tuple of float
+            Median plain and shadowed frame times.
         """
-        step = 1e-4 * self._scene.scale
-        times = []
+        times: tuple[list[float], list[float]] = ([], [])
         for frame in range(count + 2):
-            if moving:
-                self._scene.light.position = tuple(self._home + (frame % 2) * step)
-            start = time.perf_counter()
-            self._window.Render()
-            self._gl.glFinish()
-            if frame >= 2:
-                times.append((time.perf_counter() - start) * 1e3)
-        self._scene.light.position = tuple(self._home)
-        return times
+            nudge = 1e-4 * (frame % 2) if moving else 0.0
+            for scene, home, kept in zip(self._scenes, self._homes, times, strict=True):
+                elapsed = self._frame(scene, home, nudge)
+                if frame >= 2:
+                    kept.append(elapsed)
+        for scene, home in zip(self._scenes, self._homes, strict=True):
+            scene.light.position = tuple(home)
+        return statistics.median(times[0]), statistics.median(times[1])
 
 
 def run_bench(
@@ -166,7 +175,7 @@ def run_bench(
     window_size : tuple of int, default: (800, 600)
         Size of the frame.
     progress : callable, default: print
-        Receives one line per finished step.
+        Receives one line per finished case.
 
     Returns
     -------
@@ -175,37 +184,37 @@ def run_bench(
     """
     import pvshadows  # noqa: F401 - registers pl.shadows
 
-    scene = standard_scene(window_size=window_size)
-    plotter = scene.plotter
-    plotter.screenshot(return_img=True)
-    clock = FrameClock(scene)
-    plain = clock.frames(frames, moving=True)
-    progress(f"plain frame: {statistics.median(plain):.1f} ms (median of {frames})")
+    shadowed = standard_scene(window_size=window_size)
+    plain = standard_scene(window_size=window_size)
+    for scene in (shadowed, plain):
+        scene.plotter.screenshot(return_img=True)
+    clock = PairedClock(shadowed, plain)
+    shadows = shadowed.plotter.shadows
     rows = []
     for number, case in enumerate(cases, start=1):
-        plotter.shadows.enable(technique=case.technique, **case.settings)
-        moving = statistics.median(clock.frames(frames, moving=True))
-        static = statistics.median(clock.frames(frames, moving=False))
-        error = plotter.shadows.measure(scene.light)
-        plotter.shadows.disable()
-        plain += clock.frames(max(2, frames // 4), moving=True)
-        base = statistics.median(plain)
+        shadows.enable(technique=case.technique, **case.settings)
+        base_moving, moving = clock.medians(frames, moving=True)
+        base_static, static = clock.medians(frames, moving=False)
+        error = shadows.measure(shadowed.light)
+        shadows.disable()
         row = BenchRow(
             case.technique,
             case.label.removeprefix(case.technique).strip(),
             error.misclassified,
             error.rmse,
-            moving / base,
-            static / base,
+            moving / base_moving,
+            static / base_static,
             moving,
         )
         rows.append(row)
         progress(
             f"[{number}/{len(cases)}] {case.label}: misclassified {100 * row.misclassified:.3f} %, "
             f"RMSE {row.rmse:.4f}, "
-            f"time x{row.ratio_moving:.2f} moving / x{row.ratio_static:.2f} static"
+            f"time x{row.ratio_moving:.2f} moving / x{row.ratio_static:.2f} static "
+            f"(plain frame {base_moving:.1f} ms)"
         )
-    plotter.close()
+    for scene in (shadowed, plain):
+        scene.plotter.close()
     return rows
 
 
@@ -237,8 +246,41 @@ def write_table(rows: list[BenchRow], out: Path) -> None:
     (out / "bench.md").write_text("\n".join(lines) + "\n", encoding="utf-8")
 
 
+def _short(setting: str) -> str:
+    values = [part.split("=", 1)[1] for part in setting.split() if "=" in part]
+    return "/".join(values)
+
+
+def pareto_front(rows: list[BenchRow]) -> list[BenchRow]:
+    """Return the rows no other row beats on both error and time, cheapest first.
+
+    Parameters
+    ----------
+    rows : list of BenchRow
+        The measurements.
+
+    Returns
+    -------
+    list of BenchRow
+        The accuracy-cost frontier.
+
+    Examples
+    --------
+    >>> from pvshadows.bench import BenchRow, pareto_front
+    >>> rows = [BenchRow("a", "x", 0.1, 0, 1.0, 1.0, 1), BenchRow("a", "y", 0.2, 0, 2.0, 1.0, 1),
+    ...         BenchRow("a", "z", 0.05, 0, 3.0, 1.0, 1)]
+    >>> [r.setting for r in pareto_front(rows)]
+    ['x', 'z']
+    """
+    front = []
+    for row in sorted(rows, key=lambda r: (r.ratio_moving, r.misclassified)):
+        if not front or row.misclassified < front[-1].misclassified:
+            front.append(row)
+    return front
+
+
 def plot_frontier(rows: list[BenchRow], path: Path) -> None:
-    """Plot error against time ratio, one marker per case, one colour per technique.
+    """Plot error against time ratio: colour per technique, marker per filter, and the frontier.
 
     Parameters
     ----------
@@ -252,27 +294,47 @@ def plot_frontier(rows: list[BenchRow], path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    markers = {"hard": "s", "pcf": "o", "random": "^", "pcss": "D"}
     figure, axes = plt.subplots(figsize=(8, 5.5), dpi=120)
-    for technique in dict.fromkeys(r.technique for r in rows):
-        chosen = [r for r in rows if r.technique == technique]
+    colours = dict(zip(dict.fromkeys(r.technique for r in rows), plt.cm.tab10.colors, strict=False))
+    for row in rows:
+        kind = next((f for f in markers if f"filter={f}" in row.setting), None)
         axes.scatter(
-            [r.ratio_moving for r in chosen],
-            [100 * r.misclassified for r in chosen],
-            label=technique,
+            row.ratio_moving,
+            100 * row.misclassified,
+            color=colours[row.technique],
+            marker=markers.get(kind, "o"),
+            s=36,
+            zorder=3,
         )
-        for r in chosen:
-            axes.annotate(
-                r.setting,
-                (r.ratio_moving, 100 * r.misclassified),
-                fontsize=6,
-                xytext=(3, 3),
-                textcoords="offset points",
-            )
+        axes.annotate(
+            _short(row.setting),
+            (row.ratio_moving, 100 * row.misclassified),
+            fontsize=6,
+            xytext=(4, 2),
+            textcoords="offset points",
+        )
+    front = pareto_front(rows)
+    axes.step(
+        [r.ratio_moving for r in front],
+        [100 * r.misclassified for r in front],
+        where="post",
+        color="0.5",
+        linewidth=1,
+        zorder=2,
+        label="frontier",
+    )
+    for technique, colour in colours.items():
+        axes.scatter([], [], color=colour, label=technique)
+    for kind, marker in markers.items():
+        if any(f"filter={kind}" in r.setting for r in rows):
+            axes.scatter([], [], color="0.3", marker=marker, label=f"filter {kind}")
+    axes.set_yscale("log")
     axes.set_xlabel("frame time / frame time without shadows (light moving every frame)")
     axes.set_ylabel("lit-side pixels misclassified against ray tracing (%)")
-    axes.set_title("pvshadows: accuracy against cost")
-    axes.grid(alpha=0.3)
-    axes.legend()
+    axes.set_title("pvshadows: accuracy against cost (labels: setting values)")
+    axes.grid(alpha=0.3, which="both")
+    axes.legend(fontsize=8)
     figure.tight_layout()
     figure.savefig(path)
     plt.close(figure)

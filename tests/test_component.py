@@ -8,6 +8,7 @@ import numpy as np
 import pyvista as pv
 
 from conftest import draw, point_light
+from pvshadows.gl.binding import opengl_for
 from pvshadows.scenes import standard_scene
 
 
@@ -50,7 +51,13 @@ def test_disable_gives_pixel_identical_frames_and_releases_everything(scene):
     pl.shadows.enable(filter="pcf")
     shadowed = pl.screenshot(return_img=True)
     assert np.abs(plain.astype(int) - shadowed).max() > 100  # shadows did change the frame
+    cube = pl.shadows._renderers[0].technique("cubemap").cube_of(scene.light)
+    texture = cube.texture.GetHandle()
+    gl = opengl_for(pl.ren_win)
+    assert gl.glIsTexture(texture)
     pl.shadows.disable()
+    pl.ren_win.MakeCurrent()
+    assert not gl.glIsTexture(texture)
     assert np.array_equal(pl.screenshot(return_img=True), plain)
     for actor in (scene.ground, scene.box, scene.sphere, scene.cylinder):
         prop = actor.GetShaderProperty()

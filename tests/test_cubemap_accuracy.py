@@ -114,3 +114,15 @@ def test_shadows_near_grazing_stay_attached():
     error = measured(standard_scene(light_position=(0.3, -0.2, 0.25)))
     assert error.false_shadow <= 0.001
     assert error.misclassified <= 0.005
+
+
+def test_resolution_extremes_work_and_error_falls_with_resolution():
+    scene = standard_scene(window_size=(400, 300))
+    shadows = scene.plotter.shadows
+    errors = {}
+    for resolution in (64, 1024, 4096):
+        shadows.enable(filter="hard", resolution=resolution)
+        errors[resolution] = shadows.measure(scene.light).misclassified
+    assert errors[64] > errors[1024] >= errors[4096]
+    assert errors[64] <= 0.05
+    assert errors[4096] <= 0.005
