@@ -14,7 +14,7 @@ from collections.abc import Callable
 
 import vtk
 
-from pvshadows.gl.caster_buffers import CasterBuffers
+from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan, plan_frame
 from pvshadows.report import FrameReport, LightReport
@@ -27,7 +27,8 @@ from pvshadows.shading import (
     receiver_replacements,
 )
 from pvshadows.snapshot import SceneReader, Snapshot
-from pvshadows.techniques.cubemap import CubemapTechnique
+from pvshadows.techniques import TECHNIQUE_CLASSES
+from pvshadows.techniques.base import FrameContext, Technique
 
 
 class RendererShadows:
@@ -59,17 +60,17 @@ class RendererShadows:
         self._edits: dict[str, ShaderEdits] = {}
         self._window: vtk.vtkOpenGLRenderWindow | None = None
         self._timer: PassTimer | None = None
-        self._buffers: CasterBuffers | None = None
-        self._techniques: dict[str, CubemapTechnique] = {}
+        self._buffers: ActorBuffers | None = None
+        self._techniques: dict[str, Technique] = {}
         self._frame = 0
-        self._active: list[CubemapTechnique] = []
+        self._active: list[Technique] = []
         self.probe_index = -1
         self.plans: list[LightPlan] = []
         self.snapshot: Snapshot | None = None
         self.last_frame = FrameReport()
         self.error: Exception | None = None
 
-    def technique(self, name: str) -> CubemapTechnique:
+    def technique(self, name: str) -> Technique:
         """Return the object running technique ``name`` in this renderer.
 
         Parameters
@@ -79,9 +80,11 @@ class RendererShadows:
 
         Returns
         -------
-        CubemapTechnique
-            The technique's state (its maps).
+        Technique
+            The technique's state (its maps), created on first use.
         """
+        if name not in self._techniques:
+            self._techniques[name] = TECHNIQUE_CLASSES[name](self._window)
         return self._techniques[name]
 
     def _start_gl(self) -> None:
@@ -90,8 +93,8 @@ class RendererShadows:
             return
         self._window = window
         self._timer = PassTimer(window)
-        self._buffers = CasterBuffers(window)
-        self._techniques = {"cubemap": CubemapTechnique(window, self._buffers, self._timer)}
+        self._buffers = ActorBuffers(window)
+        self._techniques = {}
 
     def _on_start(self, renderer: vtk.vtkRenderer, event: str) -> None:
         try:
@@ -109,6 +112,15 @@ class RendererShadows:
         renderer.UpdateLightsGeometryToFollowCamera()
         snapshot = self._reader.read(renderer)
         plans = plan_frame(renderer, snapshot, self._settings_for)
+        context = FrameContext(
+            self._window,
+            renderer,
+            renderer.GetActiveCamera(),
+            snapshot,
+            self._frame,
+            self._buffers,
+            self._timer,
+        )
         report = FrameReport()
         uniforms: dict[str, object] = {PROBE_UNIFORM: self.probe_index}
         shadings = []
@@ -120,14 +132,15 @@ class RendererShadows:
             report.lights.append(light_report)
             if plan.technique is None:
                 continue
-            technique = self._techniques[plan.technique]
-            light_report.passes = technique.update(plan, self._frame)
+            technique = self.technique(plan.technique)
+            light_report.passes = technique.update(plan, context)
             shadings.append(technique.shading(plan))
-            uniforms.update(technique.activate(plan, renderer.GetActiveCamera()))
-            self._active.append(technique)
+            uniforms.update(technique.activate(plan, context))
+            if technique not in self._active:
+                self._active.append(technique)
         for technique in self._techniques.values():
             technique.keep_only(plans)
-        self._buffers.keep_only(snapshot.casters)
+        self._buffers.keep_only(snapshot.actors)
         self._apply_edits(snapshot, shadings, uniforms)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
 

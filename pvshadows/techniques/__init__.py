@@ -1,1 +1,6 @@
 """One module per shadow technique: its maps, its passes, and the shading it asks for."""
+
+from pvshadows.techniques.cubemap import CubemapTechnique
+
+#: The class that runs each technique, by name.
+TECHNIQUE_CLASSES = {CubemapTechnique.name: CubemapTechnique}

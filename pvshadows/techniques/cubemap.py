@@ -7,14 +7,13 @@ from dataclasses import dataclass
 import numpy as np
 import vtk
 
-from pvshadows.gl.caster_buffers import CasterBuffers
 from pvshadows.gl.textures import DepthCube
-from pvshadows.gl.timing import PassTimer
 from pvshadows.passes.cube_depth import CubeCaster, CubeDepthPass, caster_face_mask
 from pvshadows.planner import LightPlan
 from pvshadows.report import PassReport
 from pvshadows.scene import vtk_id
 from pvshadows.shading import LightShading
+from pvshadows.techniques.base import FrameContext
 from pvshadows.transforms import translation, view_to_light
 
 #: Side of the tap grid for each ``pcf_taps`` value.
@@ -47,32 +46,24 @@ class CubemapTechnique:
     ----------
     window : vtk.vtkOpenGLRenderWindow
         The window whose context owns the cubes.
-    buffers : CasterBuffers
-        Shared GPU copies of the casters.
-    timer : PassTimer
-        Measures each pass.
     """
 
     name = "cubemap"
 
-    def __init__(
-        self, window: vtk.vtkOpenGLRenderWindow, buffers: CasterBuffers, timer: PassTimer
-    ) -> None:
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
-        self._buffers = buffers
-        self._timer = timer
         self._pass = CubeDepthPass(window)
         self._states: dict[str, CubeState] = {}
 
-    def update(self, plan: LightPlan, frame: int) -> list[PassReport]:
+    def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
         """Bring the light's cube up to date for this frame.
 
         Parameters
         ----------
         plan : LightPlan
             The light's plan (technique ``"cubemap"``).
-        frame : int
-            Frame counter, for messages about reuse.
+        context : FrameContext
+            This frame's renderer, actors, buffers and timer.
 
         Returns
         -------
@@ -107,14 +98,14 @@ class CubemapTechnique:
             shift = translation(caster.triangles.center)
             casters.append(
                 CubeCaster(
-                    self._buffers.get(caster),
+                    context.buffers.get(caster),
                     translation(-position) @ caster.matrix @ shift,
                     caster_face_mask(caster.bounds - position),
                 )
             )
         state.far = _far(position, plan.casters)
-        reports = self._pass.render(state.cube, casters, state.far, settings.passes, self._timer)
-        state.key, state.frame = key, frame
+        reports = self._pass.render(state.cube, casters, state.far, settings.passes, context.timer)
+        state.key, state.frame = key, context.frame
         return reports
 
     def shading(self, plan: LightPlan) -> LightShading:
@@ -145,15 +136,15 @@ class CubemapTechnique:
             i, call, {f"pvsCube{i}": "samplerCubeShadow"}, ("shadow_cube.glsl",), (define,)
         )
 
-    def activate(self, plan: LightPlan, camera: vtk.vtkCamera) -> dict[str, object]:
+    def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
         """Bind the light's cube to a texture unit and return the receivers' uniforms.
 
         Parameters
         ----------
         plan : LightPlan
             The light's plan.
-        camera : vtk.vtkCamera
-            The renderer's camera this frame.
+        context : FrameContext
+            This frame's renderer and camera.
 
         Returns
         -------
@@ -166,7 +157,7 @@ class CubemapTechnique:
         i = plan.vtk_index
         return {
             f"pvsCube{i}": state.cube.texture.GetTextureUnit(),
-            f"pvsViewToLight{i}": view_to_light(camera, plan.pose.position),
+            f"pvsViewToLight{i}": view_to_light(context.camera, plan.pose.position),
             f"pvsCubeParams{i}": (
                 state.far,
                 2.0 / settings.resolution,

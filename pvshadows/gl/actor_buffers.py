@@ -1,4 +1,4 @@
-"""GPU copies of the casters' triangles, shared by every light and technique."""
+"""GPU copies of the actors' triangles, shared by every light and technique."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ from pvshadows.scene import vtk_id
 from pvshadows.snapshot import ActorState
 
 
-class CasterBuffers:
-    """Uploads each caster's triangles once per change of its data.
+class ActorBuffers:
+    """Uploads each actor's triangles once per change of its data.
 
     Parameters
     ----------
@@ -23,12 +23,12 @@ class CasterBuffers:
         self._buffers: dict[str, tuple[int, TriangleBuffers]] = {}
 
     def get(self, state: ActorState) -> TriangleBuffers:
-        """Return the buffers of a caster, uploading them if its data changed.
+        """Return the buffers of an actor, uploading them if its data changed.
 
         Parameters
         ----------
         state : ActorState
-            The caster this frame.
+            The actor this frame.
 
         Returns
         -------
@@ -47,12 +47,12 @@ class CasterBuffers:
         return buffers
 
     def keep_only(self, states: list[ActorState]) -> None:
-        """Release the buffers of actors that are no longer casters.
+        """Release the buffers of actors that are gone.
 
         Parameters
         ----------
         states : list of ActorState
-            The casters of this frame.
+            The actors of this frame.
         """
         alive = {vtk_id(s.actor) for s in states}
         for key in set(self._buffers) - alive:

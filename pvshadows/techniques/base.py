@@ -1,0 +1,78 @@
+"""What every technique receives each frame, and what it must provide."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar, Protocol
+
+import vtk
+
+from pvshadows.gl.actor_buffers import ActorBuffers
+from pvshadows.gl.timing import PassTimer
+from pvshadows.planner import LightPlan
+from pvshadows.report import PassReport
+from pvshadows.shading import LightShading
+from pvshadows.snapshot import Snapshot
+
+
+@dataclass
+class FrameContext:
+    """What a technique may read in one frame.
+
+    Attributes
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context is current.
+    renderer : vtk.vtkRenderer
+        The renderer being drawn.
+    camera : vtk.vtkCamera
+        Its active camera.
+    snapshot : Snapshot
+        Its actors this frame.
+    frame : int
+        Frame counter of this renderer.
+    buffers : ActorBuffers
+        GPU copies of the actors' triangles, shared by all techniques.
+    timer : PassTimer
+        Measures each pass's GPU time.
+    """
+
+    window: vtk.vtkOpenGLRenderWindow
+    renderer: vtk.vtkRenderer
+    camera: vtk.vtkCamera
+    snapshot: Snapshot
+    frame: int
+    buffers: ActorBuffers
+    timer: PassTimer
+
+    def viewport_size(self) -> tuple[int, int]:
+        """Return the renderer's size in pixels."""
+        width, height = self.renderer.GetSize()
+        return int(width), int(height)
+
+
+class Technique(Protocol):
+    """A shadow technique: the maps it keeps, the passes it runs, the shading it asks for.
+
+    One object serves every light of a renderer that uses the technique.
+    """
+
+    name: ClassVar[str]
+
+    def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
+        """Bring the light's shadow data up to date; report each pass run, reused or skipped."""
+
+    def shading(self, plan: LightPlan) -> LightShading:
+        """Return how receivers read the light's shadow data."""
+
+    def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+        """Bind the light's textures and return the receivers' uniform values."""
+
+    def deactivate(self) -> None:
+        """Free the texture units bound by :meth:`activate` (after the frame)."""
+
+    def keep_only(self, plans: list[LightPlan]) -> None:
+        """Release what lights that no longer use the technique held."""
+
+    def release(self) -> None:
+        """Release every GPU resource."""
