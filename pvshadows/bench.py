@@ -1,11 +1,16 @@
 """``pvshadows bench``: error against the reference and time ratio of every setting, in one run.
 
-Each case renders the standard scene with one technique and setting. Its
-error is measured against the ray-traced reference of the same frame; its
-cost is the median frame time over the median frame time of the same scene
-without shadows, measured in the same run (ratios, because shared machines
-are noisy). Two ratios are kept: with the light moving every frame, so every
-shadow pass runs, and with a static scene, where maps are reused.
+Each case renders the standard scene, lit by a point, spot or directional
+light, with one technique and setting. Its error is measured against the
+ray-traced reference of the same frame: the share of lit-side pixels whose
+shadow class disagrees with exact hard visibility, and the RMSE of visibility
+against the reference that suits the filter (hard visibility for ``hard``,
+a many-sample area light for the soft filters). Its cost is the median frame
+time over the median frame time of the same scene without shadows, frames
+of the two alternating in the same run (ratios, because shared machines are
+noisy). Two ratios are kept: with the light moving every frame, so every
+shadow pass runs, and with a static scene, where maps are reused. VTK's own
+``enable_shadows()`` is measured the same way beside them.
 """
 
 from __future__ import annotations
@@ -19,7 +24,9 @@ from pathlib import Path
 
 import numpy as np
 
+from pvshadows.builtin import builtin_visibility
 from pvshadows.gl.binding import opengl_for
+from pvshadows.measure import compare
 from pvshadows.scenes import StandardScene, standard_scene
 
 
@@ -30,18 +37,32 @@ class BenchCase:
     Attributes
     ----------
     technique : str
-        Technique name, as ``configure`` takes it.
+        Technique name, as ``configure`` takes it, or ``"vtk"`` for VTK's own
+        ``enable_shadows()``.
     settings : dict
         Settings passed to ``configure``.
+    light : str
+        The standard scene's light: ``"point"``, ``"spot"`` or ``"directional"``.
     """
 
     technique: str
     settings: dict = field(default_factory=dict)
+    light: str = "point"
+
+    @property
+    def setting(self) -> str:
+        """The settings as ``name=value`` words."""
+        return " ".join(f"{k}={v}" for k, v in self.settings.items())
 
     @property
     def label(self) -> str:
-        """Short description, e.g. ``"cubemap resolution=512 filter=hard passes=single"``."""
-        return " ".join([self.technique] + [f"{k}={v}" for k, v in self.settings.items()])
+        """Short description, e.g. ``"cubemap (point) resolution=512 filter=hard"``."""
+        return f"{self.technique} ({self.light}) {self.setting}".strip()
+
+    @property
+    def soft(self) -> bool:
+        """Whether the case's filter makes soft shadows (judged against an area light)."""
+        return self.settings.get("filter") in SOFT_FILTERS
 
 
 @dataclass(frozen=True)
@@ -50,12 +71,15 @@ class BenchRow:
 
     Attributes
     ----------
-    technique, setting : str
+    technique, light, setting : str
         The case.
     misclassified : float
-        Share of lit-side pixels whose shadow class disagrees with the reference.
+        Share of lit-side pixels whose shadow class disagrees with exact hard
+        visibility.
     rmse : float
-        RMSE of visibility against the reference.
+        RMSE of visibility against ``reference``.
+    reference : str
+        ``"hard"``, or the area light the soft filters are judged against.
     ratio_moving : float
         Median frame time with the light moving every frame, over the plain frame.
     ratio_static : float
@@ -65,12 +89,22 @@ class BenchRow:
     """
 
     technique: str
+    light: str
     setting: str
     misclassified: float
     rmse: float
+    reference: str
     ratio_moving: float
     ratio_static: float
     frame_ms: float
+
+
+#: Filters judged against an area-light reference.
+SOFT_FILTERS = ("pcf", "random", "pcss")
+#: Size of each light for the soft filters and their reference (world radius, or degrees).
+LIGHT_SIZE = {"point": 0.25, "spot": 0.25, "directional": 2.0}
+#: Shadow rays per pixel of the area-light reference.
+REFERENCE_SAMPLES = 128
 
 
 def cubemap_cases(
@@ -78,7 +112,7 @@ def cubemap_cases(
     filters: Iterable[str] = ("hard", "pcf"),
     passes: Iterable[str] = ("single", "six"),
 ) -> list[BenchCase]:
-    """Return the cube-map cases: every resolution x filter x way of filling the cube.
+    """Return point-light cube-map cases: every resolution x filter x way of filling the cube.
 
     Parameters
     ----------
@@ -102,6 +136,67 @@ def cubemap_cases(
         for f in filters
         for p in passes
     ]
+
+
+def filter_cases(technique: str, light: str, resolutions: Iterable[int]) -> list[BenchCase]:
+    """Return one technique's cases over every filter setting, for one kind of light.
+
+    Parameters
+    ----------
+    technique : str
+        ``"cubemap"`` or ``"map"``.
+    light : str
+        The scene's light.
+    resolutions : iterable of int
+        Map resolutions.
+
+    Returns
+    -------
+    list of BenchCase
+        hard, pcf 4 and 16 taps, random 16 and 64 samples, and pcss, per resolution.
+
+    Examples
+    --------
+    >>> from pvshadows.bench import filter_cases
+    >>> [c.setting for c in filter_cases("map", "spot", [512])][-1]
+    'resolution=512 filter=pcss samples=32 light_size=0.25'
+    """
+    size = LIGHT_SIZE[light]
+    filters = [
+        {"filter": "hard"},
+        {"filter": "pcf", "pcf_taps": 4},
+        {"filter": "pcf", "pcf_taps": 16},
+        {"filter": "random", "samples": 16},
+        {"filter": "random", "samples": 64},
+        {"filter": "pcss", "samples": 32, "light_size": size},
+    ]
+    return [
+        BenchCase(technique, {"resolution": r, **f}, light) for r in resolutions for f in filters
+    ]
+
+
+def all_cases() -> list[BenchCase]:
+    """Return the published bench: every technique and setting, and VTK's own shadows.
+
+    Returns
+    -------
+    list of BenchCase
+        Point light: cube map x resolution x filter x passes, and the soft
+        filters; spot light: 2D map x resolution x filter, and VTK's
+        ``enable_shadows()``; directional light: fitted 2D map x resolution x filter.
+
+    Examples
+    --------
+    >>> from pvshadows.bench import all_cases
+    >>> sorted({(c.technique, c.light) for c in all_cases()})[0]
+    ('cubemap', 'point')
+    """
+    cases = cubemap_cases()
+    cases += [c for c in filter_cases("cubemap", "point", [1024]) if c.soft]
+    cases += filter_cases("map", "spot", [512, 1024, 2048])
+    cases.append(BenchCase("vtk", {}, "spot"))
+    cases += filter_cases("map", "directional", [1024, 2048])
+    return cases
 
 
 class PairedClock:
@@ -157,6 +252,71 @@ class PairedClock:
         return statistics.median(times[0]), statistics.median(times[1])
 
 
+def _bench_light(
+    cases: list[BenchCase],
+    light: str,
+    frames: int,
+    window_size: tuple[int, int],
+    progress: Callable[[str], None],
+    done: int,
+    total: int,
+) -> list[tuple[BenchCase, BenchRow]]:
+    shadowed = standard_scene(window_size=window_size, light=light)
+    plain = standard_scene(window_size=window_size, light=light)
+    for scene in (shadowed, plain):
+        scene.plotter.screenshot(return_img=True)
+    clock = PairedClock(shadowed, plain)
+    plotter, shadows = shadowed.plotter, shadowed.plotter.shadows
+    area_light = f"area light {LIGHT_SIZE[light]:g}{'deg' if light == 'directional' else ''}"
+    rows = []
+    for case in cases:
+        if case.technique == "vtk":
+            plotter.enable_shadows()
+            base_moving, moving = clock.medians(frames, moving=True)
+            base_static, static = base_moving, moving
+            plotter.disable_shadows()
+            shown = builtin_visibility(plotter, shadowed.light)
+            shadows.enable(filter="hard")
+            hard = compare(shown, shadows._trace(shadowed.light))
+            shadows.disable()
+            error, reference = hard, "hard"
+        else:
+            shadows.enable(technique=case.technique, **case.settings)
+            base_moving, moving = clock.medians(frames, moving=True)
+            base_static, static = clock.medians(frames, moving=False)
+            shown = shadows.visibility(shadowed.light)
+            hard = compare(shown, shadows._trace(shadowed.light))
+            error, reference = hard, "hard"
+            if case.soft:
+                traced = shadows._trace(
+                    shadowed.light, light_size=LIGHT_SIZE[light], samples=REFERENCE_SAMPLES
+                )
+                error, reference = compare(shown, traced), area_light
+            shadows.disable()
+        row = BenchRow(
+            case.technique if case.technique != "vtk" else "vtk enable_shadows()",
+            light,
+            case.setting,
+            hard.misclassified,
+            error.rmse,
+            reference,
+            moving / base_moving,
+            static / base_static,
+            moving,
+        )
+        rows.append((case, row))
+        done += 1
+        progress(
+            f"[{done}/{total}] {case.label}: misclassified {100 * row.misclassified:.3f} %, "
+            f"RMSE {row.rmse:.4f} vs {reference}, "
+            f"time x{row.ratio_moving:.2f} moving / x{row.ratio_static:.2f} static "
+            f"(plain frame {base_moving:.1f} ms)"
+        )
+    for scene in (shadowed, plain):
+        scene.plotter.close()
+    return rows
+
+
 def run_bench(
     cases: list[BenchCase],
     *,
@@ -164,7 +324,7 @@ def run_bench(
     window_size: tuple[int, int] = (800, 600),
     progress: Callable[[str], None] = print,
 ) -> list[BenchRow]:
-    """Measure every case on the standard scene.
+    """Measure every case on the standard scene lit by the case's kind of light.
 
     Parameters
     ----------
@@ -180,45 +340,21 @@ def run_bench(
     Returns
     -------
     list of BenchRow
-        One row per case, in order.
+        One row per case, in the order of the cases.
     """
     import pvshadows  # noqa: F401 - registers pl.shadows
 
-    shadowed = standard_scene(window_size=window_size)
-    plain = standard_scene(window_size=window_size)
-    for scene in (shadowed, plain):
-        scene.plotter.screenshot(return_img=True)
-    clock = PairedClock(shadowed, plain)
-    shadows = shadowed.plotter.shadows
-    rows = []
-    for number, case in enumerate(cases, start=1):
-        shadows.enable(technique=case.technique, **case.settings)
-        base_moving, moving = clock.medians(frames, moving=True)
-        base_static, static = clock.medians(frames, moving=False)
-        error = shadows.measure(shadowed.light)
-        shadows.disable()
-        row = BenchRow(
-            case.technique,
-            case.label.removeprefix(case.technique).strip(),
-            error.misclassified,
-            error.rmse,
-            moving / base_moving,
-            static / base_static,
-            moving,
+    measured: dict[int, BenchRow] = {}
+    for light in dict.fromkeys(case.light for case in cases):
+        chosen = [case for case in cases if case.light == light]
+        pairs = _bench_light(
+            chosen, light, frames, window_size, progress, len(measured), len(cases)
         )
-        rows.append(row)
-        progress(
-            f"[{number}/{len(cases)}] {case.label}: misclassified {100 * row.misclassified:.3f} %, "
-            f"RMSE {row.rmse:.4f}, "
-            f"time x{row.ratio_moving:.2f} moving / x{row.ratio_static:.2f} static "
-            f"(plain frame {base_moving:.1f} ms)"
-        )
-    for scene in (shadowed, plain):
-        scene.plotter.close()
-    return rows
+        measured.update((id(case), row) for case, row in pairs)
+    return [measured[id(case)] for case in cases]
 
 
-def write_table(rows: list[BenchRow], out: Path) -> None:
+def write_table(rows: list[BenchRow], out: Path, extra: str = "") -> None:
     """Write ``bench.csv`` and ``bench.md`` into ``out``.
 
     Parameters
@@ -227,6 +363,8 @@ def write_table(rows: list[BenchRow], out: Path) -> None:
         The measurements.
     out : pathlib.Path
         Folder to write into (created if needed).
+    extra : str, optional
+        Markdown appended to ``bench.md`` (for example the silhouette timings).
     """
     out.mkdir(parents=True, exist_ok=True)
     with open(out / "bench.csv", "w", newline="", encoding="utf-8") as handle:
@@ -234,16 +372,17 @@ def write_table(rows: list[BenchRow], out: Path) -> None:
         writer.writeheader()
         writer.writerows(asdict(row) for row in rows)
     lines = [
-        "| technique | setting | misclassified | RMSE | time ratio (light moving) "
-        "| time ratio (static) | frame ms |",
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: |",
+        "| technique | light | setting | misclassified | RMSE | RMSE against "
+        "| time ratio (light moving) | time ratio (static) | frame ms |",
+        "| --- | --- | --- | ---: | ---: | --- | ---: | ---: | ---: |",
     ]
     lines += [
-        f"| {r.technique} | {r.setting} | {100 * r.misclassified:.3f} % | {r.rmse:.4f} "
-        f"| {r.ratio_moving:.2f} | {r.ratio_static:.2f} | {r.frame_ms:.1f} |"
+        f"| {r.technique} | {r.light} | {r.setting} | {100 * r.misclassified:.3f} % "
+        f"| {r.rmse:.4f} | {r.reference} | {r.ratio_moving:.2f} | {r.ratio_static:.2f} "
+        f"| {r.frame_ms:.1f} |"
         for r in rows
     ]
-    (out / "bench.md").write_text("\n".join(lines) + "\n", encoding="utf-8")
+    (out / "bench.md").write_text("\n".join(lines) + "\n" + extra, encoding="utf-8")
 
 
 def _short(setting: str) -> str:
@@ -251,13 +390,15 @@ def _short(setting: str) -> str:
     return "/".join(values)
 
 
-def pareto_front(rows: list[BenchRow]) -> list[BenchRow]:
+def pareto_front(rows: list[BenchRow], error: Callable[[BenchRow], float]) -> list[BenchRow]:
     """Return the rows no other row beats on both error and time, cheapest first.
 
     Parameters
     ----------
     rows : list of BenchRow
         The measurements.
+    error : callable
+        The error of a row.
 
     Returns
     -------
@@ -267,20 +408,74 @@ def pareto_front(rows: list[BenchRow]) -> list[BenchRow]:
     Examples
     --------
     >>> from pvshadows.bench import BenchRow, pareto_front
-    >>> rows = [BenchRow("a", "x", 0.1, 0, 1.0, 1.0, 1), BenchRow("a", "y", 0.2, 0, 2.0, 1.0, 1),
-    ...         BenchRow("a", "z", 0.05, 0, 3.0, 1.0, 1)]
-    >>> [r.setting for r in pareto_front(rows)]
+    >>> rows = [BenchRow("a", "point", s, e, 0, "hard", t, 1.0, 1)
+    ...         for s, e, t in [("x", 0.1, 1.0), ("y", 0.2, 2.0), ("z", 0.05, 3.0)]]
+    >>> [r.setting for r in pareto_front(rows, lambda r: r.misclassified)]
     ['x', 'z']
     """
-    front = []
-    for row in sorted(rows, key=lambda r: (r.ratio_moving, r.misclassified)):
-        if not front or row.misclassified < front[-1].misclassified:
+    front: list[BenchRow] = []
+    for row in sorted(rows, key=lambda r: (r.ratio_moving, error(r))):
+        if not front or error(row) < error(front[-1]):
             front.append(row)
     return front
 
 
+def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], label: str) -> None:
+    markers = {"hard": "s", "pcf": "o", "random": "^", "pcss": "D"}
+    groups = list(dict.fromkeys(f"{r.technique} ({r.light})" for r in rows))
+    colours = dict(zip(groups, plt_colours(), strict=False))
+    for row in rows:
+        kind = next((f for f in markers if f"filter={f}" in row.setting), None)
+        axes.scatter(
+            row.ratio_moving,
+            error(row),
+            color=colours[f"{row.technique} ({row.light})"],
+            marker=markers.get(kind, "X"),
+            s=32,
+            zorder=3,
+        )
+        axes.annotate(
+            _short(row.setting),
+            (row.ratio_moving, error(row)),
+            fontsize=5,
+            xytext=(3, 2),
+            textcoords="offset points",
+        )
+    front = pareto_front(rows, error)
+    axes.step(
+        [r.ratio_moving for r in front],
+        [error(r) for r in front],
+        where="post",
+        color="0.5",
+        linewidth=1,
+        zorder=2,
+        label="frontier",
+    )
+    for group, colour in colours.items():
+        axes.scatter([], [], color=colour, label=group)
+    for kind, marker in markers.items():
+        if any(f"filter={kind}" in r.setting for r in rows):
+            axes.scatter([], [], color="0.3", marker=marker, label=f"filter {kind}")
+    axes.set_yscale("log")
+    axes.set_xlabel("frame time / plain frame time (light moving)")
+    axes.set_ylabel(label)
+    axes.grid(alpha=0.3, which="both")
+    axes.legend(fontsize=6)
+
+
+def plt_colours() -> list:
+    """Return matplotlib's ten-colour cycle."""
+    import matplotlib.pyplot as plt
+
+    return list(plt.cm.tab10.colors)
+
+
 def plot_frontier(rows: list[BenchRow], path: Path) -> None:
-    """Plot error against time ratio: colour per technique, marker per filter, and the frontier.
+    """Plot error against time ratio, with the frontier, for hard and for soft shadows.
+
+    Left: every row's share of lit-side pixels misclassified against exact
+    hard visibility. Right: the soft filters' RMSE against the area-light
+    reference. Colour: technique and light; marker: filter; labels: setting values.
 
     Parameters
     ----------
@@ -294,47 +489,21 @@ def plot_frontier(rows: list[BenchRow], path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    markers = {"hard": "s", "pcf": "o", "random": "^", "pcss": "D"}
-    figure, axes = plt.subplots(figsize=(8, 5.5), dpi=120)
-    colours = dict(zip(dict.fromkeys(r.technique for r in rows), plt.cm.tab10.colors, strict=False))
-    for row in rows:
-        kind = next((f for f in markers if f"filter={f}" in row.setting), None)
-        axes.scatter(
-            row.ratio_moving,
-            100 * row.misclassified,
-            color=colours[row.technique],
-            marker=markers.get(kind, "o"),
-            s=36,
-            zorder=3,
-        )
-        axes.annotate(
-            _short(row.setting),
-            (row.ratio_moving, 100 * row.misclassified),
-            fontsize=6,
-            xytext=(4, 2),
-            textcoords="offset points",
-        )
-    front = pareto_front(rows)
-    axes.step(
-        [r.ratio_moving for r in front],
-        [100 * r.misclassified for r in front],
-        where="post",
-        color="0.5",
-        linewidth=1,
-        zorder=2,
-        label="frontier",
+    soft = [r for r in rows if r.reference != "hard"]
+    figure, panels = plt.subplots(
+        1, 2 if soft else 1, figsize=(14 if soft else 8, 6), dpi=120, squeeze=False
     )
-    for technique, colour in colours.items():
-        axes.scatter([], [], color=colour, label=technique)
-    for kind, marker in markers.items():
-        if any(f"filter={kind}" in r.setting for r in rows):
-            axes.scatter([], [], color="0.3", marker=marker, label=f"filter {kind}")
-    axes.set_yscale("log")
-    axes.set_xlabel("frame time / frame time without shadows (light moving every frame)")
-    axes.set_ylabel("lit-side pixels misclassified against ray tracing (%)")
-    axes.set_title("pvshadows: accuracy against cost (labels: setting values)")
-    axes.grid(alpha=0.3, which="both")
-    axes.legend(fontsize=8)
+    _panel(
+        panels[0, 0],
+        rows,
+        lambda r: 100 * r.misclassified,
+        "lit-side pixels misclassified against ray tracing (%)",
+    )
+    panels[0, 0].set_title("hard shadow class, every technique")
+    if soft:
+        _panel(panels[0, 1], soft, lambda r: r.rmse, "RMSE of visibility against the area light")
+        panels[0, 1].set_title("soft shadows against a many-sample area light")
+    figure.suptitle("pvshadows: accuracy against cost")
     figure.tight_layout()
     figure.savefig(path)
     plt.close(figure)

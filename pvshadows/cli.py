@@ -44,9 +44,9 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _bench(args: argparse.Namespace) -> int:
-    from pvshadows.bench import cubemap_cases, plot_frontier, run_bench, write_table
+    from pvshadows.bench import all_cases, cubemap_cases, plot_frontier, run_bench, write_table
 
-    cases = cubemap_cases()
+    cases = all_cases()
     if args.quick:
         cases = cubemap_cases(resolutions=(256,), passes=("single",))
     rows = run_bench(cases, frames=args.frames, window_size=args.size)

@@ -53,6 +53,7 @@ class ShadowsComponent:
         self._lights: set[str] | None = None
         self._reader = SceneReader(self._actor_name)
         self._renderers: list[RendererShadows] = []
+        self._traced: tuple | None = None
 
     # -- enabling --------------------------------------------------------------------------
 
@@ -415,19 +416,30 @@ class ShadowsComponent:
             raise TypeError(msg)
         light, ren = self._light_and_renderer(light)
         snapshot = self._reader.read(ren)
-        meshes = [
-            SceneMesh(
-                world_points(a.triangles, a.matrix),
-                a.triangles.triangles.astype(np.int64),
-                caster=a.caster,
-                receiver=a.receiver,
-            )
-            for a in snapshot.actors
-        ]
         width, height = ren.GetSize()
         camera = ren.GetActiveCamera()
         matrix = camera.GetCompositeProjectionTransformMatrix(ren.GetTiledAspectRatio(), -1, 1)
         view = ViewSpec(pv.array_from_vtkmatrix(matrix), int(width), int(height))
-        return trace_reference(
-            meshes, view, light_pose(light), light_size=float(light_size), samples=int(samples)
+        pose = light_pose(light)
+        key = (
+            view.world_to_ndc.tobytes(),
+            (width, height),
+            pose.key(),
+            (float(light_size), int(samples)),
+            tuple((*a.key(), a.caster, a.receiver) for a in snapshot.actors),
         )
+        if self._traced is None or self._traced[0] != key:
+            meshes = [
+                SceneMesh(
+                    world_points(a.triangles, a.matrix),
+                    a.triangles.triangles.astype(np.int64),
+                    caster=a.caster,
+                    receiver=a.receiver,
+                )
+                for a in snapshot.actors
+            ]
+            result = trace_reference(
+                meshes, view, pose, light_size=float(light_size), samples=int(samples)
+            )
+            self._traced = (key, result)
+        return self._traced[1]

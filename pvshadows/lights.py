@@ -98,8 +98,8 @@ def light_pose(light: vtk.vtkLight) -> LightPose:
     Raises
     ------
     ValueError
-        If the position or focal point is not finite, or they coincide so
-        that the light has no direction.
+        If the position or focal point is not finite, they coincide so that
+        the light has no direction, or a spot light's cone angle is not positive.
 
     Examples
     --------
@@ -118,6 +118,12 @@ def light_pose(light: vtk.vtkLight) -> LightPose:
         )
         raise ValueError(msg)
     kind = light_kind(light)
+    if kind is LightKind.SPOT and not light.GetConeAngle() > 0.0:
+        msg = (
+            f"cone_angle={light.GetConeAngle()} is not allowed for a spot light: it must be "
+            "more than 0 degrees (90 or more makes it a point light)"
+        )
+        raise ValueError(msg)
     offset = focal_point - position
     length = float(np.linalg.norm(offset))
     if length == 0.0 or not np.isfinite(length):

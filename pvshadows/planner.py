@@ -17,9 +17,12 @@ from pvshadows.settings import ShadowSettings
 from pvshadows.snapshot import ActorState, Snapshot
 
 #: Technique ``"auto"`` picks for each kind of light.
-AUTO_TECHNIQUE = {LightKind.POINT: "cubemap"}
+AUTO_TECHNIQUE = {LightKind.POINT: "cubemap", LightKind.SPOT: "map", LightKind.DIRECTIONAL: "map"}
 #: Kinds of light each technique can serve.
-SERVES = {"cubemap": (LightKind.POINT, LightKind.SPOT)}
+SERVES = {
+    "cubemap": (LightKind.POINT, LightKind.SPOT),
+    "map": (LightKind.SPOT, LightKind.DIRECTIONAL),
+}
 
 
 @dataclass

@@ -13,10 +13,12 @@ it meets it is recomputed in float64 from that triangle's plane. Primary rays
 start where they enter the scene's bounds, so that their float32 origins stay
 close to the geometry even for distant cameras.
 
-Shadow rays start a little above the surface, at
-:data:`SELF_INTERSECTION_EPSILON` times the scene diagonal along the normal.
-Details smaller than that, or smaller than the float32 resolution of the whole
-scene (about ``1e-7`` of its diagonal), are not resolved.
+Shadow rays run from the light to the surface point, and the point is lit
+when the first thing they meet is its own surface (within
+:data:`RAY_TOLERANCE`): no offset proportional to the scene is needed, so a
+small object in a huge scene still casts its shadow. Blockers closer to the
+surface than the float32 resolution of the whole scene (about ``1e-7`` of its
+diagonal) count as touching it.
 """
 
 from __future__ import annotations
@@ -31,18 +33,23 @@ import trimesh
 
 from pvshadows.lights import LightKind, LightPose
 
-SELF_INTERSECTION_EPSILON = 1e-5
-"""Offset of shadow-ray origins along the normal, as a fraction of the scene diagonal.
+RAY_TOLERANCE = 1e-7
+"""How close to a surface point (fraction of the scene diagonal) a shadow ray's hit is that point.
 
-Embree sees the scene in float32, with coordinates in ``[0, 1]`` once trimesh
-has moved them to its own origin, so vertices and ray origins are rounded by up
-to ``2**-24`` (6e-8) and intersections carry errors of a few such units: the
-offset clears a ray's own surface by about a hundred times that, enough for
-rays that leave it at a grazing angle. It moves a shadow boundary by the
-offset divided by the tangent of the light's elevation above the receiver:
-``1e-5`` of the diagonal for light from 45 degrees, ``1e-3`` at 0.5 degrees,
-where a 1000 pixel view of the whole scene has pixels of ``1e-3``.
+Shadow rays run from the light to the point, and a point is lit when the
+first thing the ray meets is the point's own surface. Embree works in float32,
+so it only picks *which* triangle a ray meets first; the distance is
+recomputed in float64 from that triangle's plane, where the point's own
+surface lands within about ``1e-12`` of the point. Anything met more than
+``RAY_TOLERANCE`` before the point blocks it: so no detail is lost however
+small it is next to the scene (a box 1 unit tall on a ground 1e5 wide), and a
+blocker closer to the surface than ``1e-7`` of the diagonal, the float32
+resolution of the scene, counts as touching it.
 """
+
+LIGHT_CLEARANCE = 1e-7
+"""Shadow rays start this far from the light (fraction of the scene diagonal), so
+that a light lying on a surface is not blocked by that surface."""
 
 MAX_SAMPLES = 4096
 """Largest number of shadow rays per pixel."""
@@ -410,10 +417,6 @@ def _slab(
     return enter, leave
 
 
-def _shadow_origins(points: np.ndarray, normals: np.ndarray) -> np.ndarray:
-    return points + SELF_INTERSECTION_EPSILON * normals
-
-
 def _perpendicular_basis(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Two unit vectors that make a right-handed orthonormal basis with each unit axis.
 
@@ -648,7 +651,7 @@ class _Emitter:
             + (radius * around[..., 0])[..., None] * first[:, None]
             + (radius * around[..., 1])[..., None] * second[:, None]
         )
-        directions, distance = _unit(targets - _shadow_origins(points, normals)[:, None])
+        directions, distance = _unit(targets - points[:, None])
         above = _dot(targets - points[:, None], normals[:, None]) > 0.0
         return directions, distance, above
 
@@ -752,8 +755,15 @@ class _Tracer:
     ) -> np.ndarray:
         directions, distance, open_ray = self.emitter.sample_rays(points, normals, variation)
         if self.shadow is not None:
-            origins = _shadow_origins(points, normals)
             pixel, sample = np.nonzero(open_ray)
-            triangle, blocker = self.shadow.first_hit(origins[pixel], directions[pixel, sample])
-            open_ray[pixel, sample] = (triangle < 0) | (blocker >= distance[pixel, sample])
+            toward = directions[pixel, sample]
+            span = distance[pixel, sample]
+            far = ~np.isfinite(span)
+            if far.any():
+                _, leave = _slab(points[pixel[far]], toward[far], self.shadow.lo, self.shadow.hi)
+                span[far] = np.maximum(leave, 0.0) + _BOX_MARGIN
+            reach = span - LIGHT_CLEARANCE
+            origins = points[pixel] + toward * reach[:, None]
+            triangle, blocker = self.shadow.first_hit(origins, -toward)
+            open_ray[pixel, sample] = (triangle < 0) | (blocker >= reach - RAY_TOLERANCE)
         return open_ray.sum(axis=1) / self.emitter.samples

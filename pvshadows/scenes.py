@@ -21,7 +21,7 @@ class StandardScene:
     plotter : pyvista.Plotter
         Off-screen plotter, lit only by ``light``.
     light : pyvista.Light
-        The point light.
+        The light (point, spot or directional).
     ground, box, sphere, cylinder : pyvista.Actor
         The actors.
     scale : float
@@ -60,6 +60,9 @@ def standard_scene(
     scale: float = 1.0,
     offset: Sequence[float] = (0.0, 0.0, 0.0),
     light_position: Sequence[float] = (0.3, -0.2, 3.5),
+    light: str = "point",
+    cone_angle: float = 60.0,
+    sun_elevation: float = 40.0,
     window_size: tuple[int, int] = (800, 600),
     camera: tuple = STANDARD_CAMERA,
     ambient: float = 0.15,
@@ -76,7 +79,15 @@ def standard_scene(
     offset : sequence of float, default: (0, 0, 0)
         Translation applied after scaling.
     light_position : sequence of float, default: (0.3, -0.2, 3.5)
-        Where the point light hangs in the unit scene.
+        Where the point or spot light hangs in the unit scene.
+    light : {"point", "spot", "directional"}, default: "point"
+        The kind of light: a bulb, a spot aimed at the origin with
+        ``cone_angle``, or a sun ``sun_elevation`` degrees above the ground
+        (azimuth 30 degrees).
+    cone_angle : float, default: 60.0
+        Half angle of the spot light's cone.
+    sun_elevation : float, default: 40.0
+        Height of the sun above the ground, in degrees.
     window_size : tuple of int, default: (800, 600)
         Window width and height in pixels.
     camera : tuple, default: STANDARD_CAMERA
@@ -143,18 +154,42 @@ def standard_scene(
         name="cylinder",
         **style,
     )
-    light = pv.Light(
-        position=tuple(np.asarray(light_position) * scale + offset),
-        focal_point=tuple(np.asarray(light_position) * scale + offset - np.array([0, 0, scale])),
-        positional=True,
-        cone_angle=180.0,
-        light_type="scene light",
-    )
-    plotter.add_light(light)
+    light_at = np.asarray(light_position, dtype=np.float64) * scale + offset
+    if light == "point":
+        light_object = pv.Light(
+            position=tuple(light_at),
+            focal_point=tuple(light_at - np.array([0.0, 0.0, scale])),
+            positional=True,
+            cone_angle=180.0,
+            light_type="scene light",
+        )
+    elif light == "spot":
+        light_object = pv.Light(
+            position=tuple(light_at),
+            focal_point=tuple(offset),
+            positional=True,
+            cone_angle=cone_angle,
+            light_type="scene light",
+        )
+    else:
+        elevation, azimuth = np.radians(sun_elevation), np.radians(30.0)
+        towards_sun = np.array(
+            [
+                np.cos(elevation) * np.cos(azimuth),
+                np.cos(elevation) * np.sin(azimuth),
+                np.sin(elevation),
+            ]
+        )
+        light_object = pv.Light(
+            position=tuple(offset + 10.0 * scale * towards_sun),
+            focal_point=tuple(offset),
+            light_type="scene light",
+        )
+    plotter.add_light(light_object)
     position, focal, up = camera
     plotter.camera_position = [
         tuple(np.asarray(position) * scale + offset),
         tuple(np.asarray(focal) * scale + offset),
         tuple(up),
     ]
-    return StandardScene(plotter, light, ground, box, sphere, cylinder, scale, offset)
+    return StandardScene(plotter, light_object, ground, box, sphere, cylinder, scale, offset)

@@ -12,13 +12,15 @@ from dataclasses import dataclass, fields, replace
 from numbers import Integral, Real
 
 #: Techniques a light can be given; "auto" lets the planner choose.
-TECHNIQUES = ("auto", "cubemap")
+TECHNIQUES = ("auto", "cubemap", "map")
 #: Filters of the map-based techniques.
-FILTERS = ("hard", "pcf")
+FILTERS = ("hard", "pcf", "random", "pcss")
 #: Ways to fill a depth cube.
 CUBE_PASSES = ("single", "six")
-#: Allowed ``pcf_taps``: a 2x2 or 4x4 grid of hardware-filtered taps.
-PCF_TAPS = (4, 16)
+#: Allowed ``pcf_taps``: a square grid of hardware-filtered taps.
+PCF_TAPS = (4, 16, 36, 64)
+#: Smallest and largest ``samples`` of the random and PCSS filters (a multiple of 8).
+SAMPLES_RANGE = (8, 256)
 #: Smallest and largest shadow-map resolution (texels per side of a face).
 RESOLUTION_RANGE = (64, 4096)
 
@@ -30,13 +32,24 @@ class ShadowSettings:
     Attributes
     ----------
     technique : str
-        ``"auto"`` (the planner chooses) or ``"cubemap"``.
+        ``"auto"`` (the planner chooses), ``"cubemap"`` (point and spot
+        lights) or ``"map"`` (spot and directional lights).
     resolution : int
         Texels per side of each shadow-map face, 64 to 4096.
     filter : str
-        ``"hard"`` (one compare) or ``"pcf"`` (percentage-closer filtering).
+        ``"hard"`` (one compare), ``"pcf"`` (percentage-closer filtering on
+        a grid), ``"random"`` (jittered disk, early exit) or ``"pcss"``
+        (penumbra sized by the light, contact hardening).
     pcf_taps : int
-        4 or 16 hardware-filtered taps for ``"pcf"``.
+        4, 16, 36 or 64 hardware-filtered taps for ``"pcf"``.
+    samples : int
+        Taps of ``"random"`` and ``"pcss"``, a multiple of 8 from 8 to 256.
+    filter_radius : float
+        Radius of the ``"random"`` filter's disk, in texels.
+    light_size : float
+        Physical size of the light for ``"pcss"``: the radius of a point or
+        spot light's sphere in world units, or a directional light's angular
+        radius in degrees (the sun: about 0.27).
     passes : str
         ``"single"`` (one draw, geometry shader writes all six faces) or
         ``"six"`` (one draw per face) for ``"cubemap"``.
@@ -62,6 +75,9 @@ class ShadowSettings:
     resolution: int = 1024
     filter: str = "pcf"
     pcf_taps: int = 16
+    samples: int = 32
+    filter_radius: float = 2.0
+    light_size: float = 0.0
     passes: str = "single"
     bias: float = 0.5
     slope_bias: float = 0.5
@@ -90,6 +106,27 @@ def _resolution(value: object) -> int:
     return int(value)
 
 
+def _samples(value: object) -> int:
+    low, high = SAMPLES_RANGE
+    if isinstance(value, bool) or not isinstance(value, Integral):
+        msg = f"samples must be an int, a multiple of 8 from {low} to {high}, got {value!r}"
+        raise TypeError(msg)
+    if not low <= int(value) <= high or int(value) % 8:
+        msg = f"samples={value} is not allowed; it must be a multiple of 8 from {low} to {high}"
+        raise ValueError(msg)
+    return int(value)
+
+
+def _light_size(value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real):
+        msg = f"light_size must be a number (0 for a point-like light), got {value!r}"
+        raise TypeError(msg)
+    if not (math.isfinite(value) and value >= 0.0):
+        msg = f"light_size={value} is not allowed; it must be a finite number >= 0"
+        raise ValueError(msg)
+    return float(value)
+
+
 def _texels(name: str, value: object) -> float:
     if isinstance(value, bool) or not isinstance(value, Real):
         msg = f"{name} must be a number of texels (a float from 0 to 100), got {value!r}"
@@ -105,6 +142,9 @@ _CHECKS = {
     "resolution": _resolution,
     "filter": lambda v: _choice("filter", v, FILTERS),
     "pcf_taps": lambda v: _choice("pcf_taps", v, PCF_TAPS),
+    "samples": _samples,
+    "filter_radius": lambda v: _texels("filter_radius", v),
+    "light_size": _light_size,
     "passes": lambda v: _choice("passes", v, CUBE_PASSES),
     "bias": lambda v: _texels("bias", v),
     "slope_bias": lambda v: _texels("slope_bias", v),
@@ -153,4 +193,12 @@ def validated(base: ShadowSettings, **changes: object) -> ShadowSettings:
         )
         raise TypeError(msg)
     checked = {name: _CHECKS[name](value) for name, value in changes.items()}
-    return replace(base, **checked)
+    result = replace(base, **checked)
+    if result.filter == "pcss" and result.light_size <= 0.0:
+        msg = (
+            "filter='pcss' sizes penumbrae by the light's physical size: give light_size > 0 "
+            "(a point or spot light's radius in world units, a directional light's angular "
+            "radius in degrees)"
+        )
+        raise ValueError(msg)
+    return result

@@ -21,6 +21,7 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.programs import glsl_source
+from pvshadows.glsl_library import shadow_functions
 from pvshadows.transforms import column_major
 
 #: Name of the custom uniform that switches a frame to showing one light's visibility.
@@ -56,15 +57,19 @@ class LightShading:
         camera).
     samplers : Mapping[str, str]
         Uniform name to sampler type, for each texture the expression reads.
+    needs : tuple of tuple
+        ``(kind, filter)`` pairs of the shadow-map lookups the expression
+        calls (see :mod:`pvshadows.glsl_library`).
     sources : tuple of str
-        Files of ``glsl/`` that define the functions the expression calls.
+        Other files of ``glsl/`` that define functions the expression calls.
     defines : tuple of str
-        Macros that select which of those functions are compiled.
+        Macros those files need.
     """
 
     vtk_index: int
     visibility: str
     samplers: Mapping[str, str] = field(default_factory=dict)
+    needs: tuple[tuple[str, str], ...] = ()
     sources: tuple[str, ...] = ()
     defines: tuple[str, ...] = ()
 
@@ -135,8 +140,10 @@ def receiver_replacements(
     pbr = _uses_pbr(actor)
     sources = dict.fromkeys(source for light in lights for source in light.sources)
     defines = dict.fromkeys(define for light in lights for define in light.defines)
+    needs = dict.fromkeys(need for light in lights for need in light.needs)
     functions = "".join(f"#define {name}\n" for name in defines)
-    functions += _NORMAL_CHOICE + "".join(glsl_source(source) for source in sources)
+    functions += _NORMAL_CHOICE + shadow_functions(needs)
+    functions += "".join(glsl_source(source) for source in sources)
     edits = [
         (_MAIN, f"{functions}\n{_MAIN}"),
         (_VIEW_POSITION, _VIEW_POSITION + _FACET_NORMAL),

@@ -12,7 +12,7 @@ import trimesh
 import vtk
 
 from pvshadows.lights import LightKind, LightPose
-from pvshadows.reference import SELF_INTERSECTION_EPSILON, SceneMesh, ViewSpec, trace_reference
+from pvshadows.reference import SceneMesh, ViewSpec, trace_reference
 
 WIDTH, HEIGHT = 160, 120
 DOWN = np.array([0.0, 0.0, -1.0])
@@ -366,9 +366,7 @@ def test_matches_brute_force_float64_ray_casting(scale, shift):
     light = scale * np.array([0.7, 0.4, 5.0]) + shift
     result = trace_reference(meshes, view, point_light(light))
     diagonal = np.linalg.norm(np.ptp(np.concatenate([m.points for m in meshes]), axis=0))
-    mesh_index, visibility = brute_force_hard_shadows(
-        meshes, view, light, SELF_INTERSECTION_EPSILON * diagonal
-    )
+    mesh_index, visibility = brute_force_hard_shadows(meshes, view, light, 1e-6 * diagonal)
     assert (visibility == 0).sum() > 300 and (visibility == 1).sum() > 300
     assert np.sum(result.mesh_index != mesh_index) <= 1
     same = (result.visibility == visibility) | (np.isnan(result.visibility) & np.isnan(visibility))

@@ -1,46 +1,136 @@
 """Depth textures that hold shadow maps, and the framebuffers that fill them.
 
-The GL texture is made with PyOpenGL (VTK does not wrap cube or layered
-depth textures for Python) and handed to a ``vtkTextureObject`` with
-``AssignToExistingTexture``, so VTK's texture-unit manager binds it and sets
-its sampling parameters like any texture of its own.
+A 2D map is VTK's own ``vtkTextureObject`` (``AllocateDepth``). VTK does not
+make cube or layered depth textures for Python, so a cube is made with
+PyOpenGL and handed to a ``vtkTextureObject`` with ``AssignToExistingTexture``.
+Either way VTK's texture-unit manager binds the texture and sets its sampling
+parameters like any texture of its own.
 """
 
 from __future__ import annotations
 
-from typing import Any
-
+import numpy as np
 import vtk
 
 from pvshadows.gl.binding import opengl_for
 
 
-class DepthCube:
-    """A six-face depth cube map (``GL_DEPTH_COMPONENT32F``) with its framebuffer.
+class DepthTexture:
+    """A float depth texture used as a shadow map, with its own framebuffer.
 
     Parameters
     ----------
     window : vtk.vtkOpenGLRenderWindow
         The window whose context owns the texture.
     resolution : int
-        Width and height of each face in texels.
+        Width and height of the map (of each face for a cube) in texels.
 
     Attributes
     ----------
     resolution : int
-        Face size in texels.
+        Size in texels.
     texture : vtk.vtkTextureObject
-        VTK's handle on the cube, used to bind it to a texture unit.
+        VTK's handle on the texture, used to bind it to a texture unit.
     """
+
+    #: OpenGL target of the texture.
+    target_name = "GL_TEXTURE_2D"
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow, resolution: int) -> None:
         self._window = window
-        self._gl = gl = opengl_for(window)
+        self._gl = opengl_for(window)
         self.resolution = resolution
-        units = window.GetTextureUnitManager()
+        self.texture = self._create()
+        self.texture.SetDepthTextureCompare(True)
+        self.texture.SetDepthTextureCompareFunction(vtk.vtkTextureObject.Lequal)
+        self.set_linear(False)
+        self._framebuffer = int(self._gl.glGenFramebuffers(1))
+
+    @property
+    def target(self) -> int:
+        """The OpenGL texture target."""
+        return getattr(self._gl, self.target_name)
+
+    @property
+    def handle(self) -> int:
+        """The OpenGL texture name."""
+        return int(self.texture.GetHandle())
+
+    def _create(self) -> vtk.vtkTextureObject:
+        texture = vtk.vtkTextureObject()
+        texture.SetContext(self._window)
+        texture.AllocateDepth(self.resolution, self.resolution, vtk.vtkTextureObject.Float32)
+        texture.SetWrapS(vtk.vtkTextureObject.ClampToBorder)
+        texture.SetWrapT(vtk.vtkTextureObject.ClampToBorder)
+        texture.SetBorderColor(1.0, 1.0, 1.0, 1.0)
+        return texture
+
+    def set_linear(self, linear: bool) -> None:
+        """Choose nearest (one compare) or linear (hardware 2x2 compare) sampling.
+
+        Parameters
+        ----------
+        linear : bool
+            ``True`` for the hardware-filtered compare used by the filters.
+        """
+        mode = vtk.vtkTextureObject.Linear if linear else vtk.vtkTextureObject.Nearest
+        self.texture.SetMinificationFilter(mode)
+        self.texture.SetMagnificationFilter(mode)
+
+    def _attach(self, face: int | None) -> None:
+        gl = self._gl
+        gl.glFramebufferTexture2D(
+            gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, gl.GL_TEXTURE_2D, self.handle, 0
+        )
+
+    def bind_as_target(self, face: int | None = None) -> None:
+        """Bind the framebuffer with this texture as its depth attachment.
+
+        Parameters
+        ----------
+        face : int, optional
+            For a cube: attach only this face (0..5, GL order +X, -X, +Y, -Y,
+            +Z, -Z); ``None`` attaches all six as one layered attachment, for
+            a geometry shader that writes ``gl_Layer``.
+        """
+        gl = self._gl
+        state = self._window.GetState()
+        state.vtkglBindFramebuffer(gl.GL_FRAMEBUFFER, self._framebuffer)
+        self._attach(face)
+        gl.glDrawBuffer(gl.GL_NONE)
+        gl.glReadBuffer(gl.GL_NONE)
+        status = gl.glCheckFramebufferStatus(gl.GL_FRAMEBUFFER)
+        if status != gl.GL_FRAMEBUFFER_COMPLETE:
+            msg = f"the shadow-map framebuffer is incomplete (status 0x{int(status):x})"
+            raise RuntimeError(msg)
+        state.vtkglViewport(0, 0, self.resolution, self.resolution)
+
+    def release(self) -> None:
+        """Delete the texture and framebuffer (the window's context must be current)."""
+        if self._framebuffer:
+            self._gl.glDeleteFramebuffers(1, [self._framebuffer])
+            self._framebuffer = 0
+            self.texture.ReleaseGraphicsResources(self._window)
+
+
+class DepthMap(DepthTexture):
+    """A 2D depth map (``GL_DEPTH_COMPONENT32F``) for spot and directional lights.
+
+    Outside the map the border holds depth 1, so nothing outside a map's
+    coverage is shadowed.
+    """
+
+
+class DepthCube(DepthTexture):
+    """A six-face depth cube map (``GL_DEPTH_COMPONENT32F``) for point lights."""
+
+    target_name = "GL_TEXTURE_CUBE_MAP"
+
+    def _create(self) -> vtk.vtkTextureObject:
+        gl = self._gl
+        units = self._window.GetTextureUnitManager()
         unit = units.Allocate()
-        state = window.GetState()
-        state.vtkglActiveTexture(gl.GL_TEXTURE0 + unit)
+        self._window.GetState().vtkglActiveTexture(gl.GL_TEXTURE0 + unit)
         self._handle = int(gl.glGenTextures(1))
         gl.glBindTexture(gl.GL_TEXTURE_CUBE_MAP, self._handle)
         for face in range(6):
@@ -48,8 +138,8 @@ class DepthCube:
                 gl.GL_TEXTURE_CUBE_MAP_POSITIVE_X + face,
                 0,
                 gl.GL_DEPTH_COMPONENT32F,
-                resolution,
-                resolution,
+                self.resolution,
+                self.resolution,
                 0,
                 gl.GL_DEPTH_COMPONENT,
                 gl.GL_FLOAT,
@@ -58,76 +148,40 @@ class DepthCube:
         gl.glBindTexture(gl.GL_TEXTURE_CUBE_MAP, 0)
         units.Free(unit)
         gl.glEnable(gl.GL_TEXTURE_CUBE_MAP_SEAMLESS)
-        self.texture = vtk.vtkTextureObject()
-        self.texture.SetContext(window)
-        self.texture.AssignToExistingTexture(self._handle, gl.GL_TEXTURE_CUBE_MAP)
-        self.texture.SetWrapS(vtk.vtkTextureObject.ClampToEdge)
-        self.texture.SetWrapT(vtk.vtkTextureObject.ClampToEdge)
-        self.texture.SetWrapR(vtk.vtkTextureObject.ClampToEdge)
-        self.texture.SetDepthTextureCompare(True)
-        self.texture.SetDepthTextureCompareFunction(vtk.vtkTextureObject.Lequal)
-        self.set_linear(False)
-        self._framebuffer = int(gl.glGenFramebuffers(1))
+        texture = vtk.vtkTextureObject()
+        texture.SetContext(self._window)
+        texture.AssignToExistingTexture(self._handle, gl.GL_TEXTURE_CUBE_MAP)
+        texture.SetWrapS(vtk.vtkTextureObject.ClampToEdge)
+        texture.SetWrapT(vtk.vtkTextureObject.ClampToEdge)
+        texture.SetWrapR(vtk.vtkTextureObject.ClampToEdge)
+        return texture
 
-    def set_linear(self, linear: bool) -> None:
-        """Choose nearest (one compare) or linear (hardware 2x2 compare) sampling.
-
-        Parameters
-        ----------
-        linear : bool
-            ``True`` for the hardware-filtered compare used by PCF.
-        """
-        mode = vtk.vtkTextureObject.Linear if linear else vtk.vtkTextureObject.Nearest
-        self.texture.SetMinificationFilter(mode)
-        self.texture.SetMagnificationFilter(mode)
-
-    def bind_as_target(self, face: int | None = None) -> None:
-        """Bind the framebuffer with the cube as its depth attachment.
-
-        Parameters
-        ----------
-        face : int, optional
-            Attach only this face (0..5, GL order +X, -X, +Y, -Y, +Z, -Z).
-            ``None`` attaches all six as one layered attachment, for a
-            geometry shader that writes ``gl_Layer``.
-        """
+    def _attach(self, face: int | None) -> None:
         gl = self._gl
-        state = self._window.GetState()
-        state.vtkglBindFramebuffer(gl.GL_FRAMEBUFFER, self._framebuffer)
         if face is None:
-            gl.glFramebufferTexture(gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self._handle, 0)
+            gl.glFramebufferTexture(gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self.handle, 0)
         else:
             gl.glFramebufferTexture2D(
                 gl.GL_FRAMEBUFFER,
                 gl.GL_DEPTH_ATTACHMENT,
                 gl.GL_TEXTURE_CUBE_MAP_POSITIVE_X + face,
-                self._handle,
+                self.handle,
                 0,
             )
-        gl.glDrawBuffer(gl.GL_NONE)
-        gl.glReadBuffer(gl.GL_NONE)
-        status = gl.glCheckFramebufferStatus(gl.GL_FRAMEBUFFER)
-        if status != gl.GL_FRAMEBUFFER_COMPLETE:
-            msg = f"the depth-cube framebuffer is incomplete (status 0x{int(status):x})"
-            raise RuntimeError(msg)
-        state.vtkglViewport(0, 0, self.resolution, self.resolution)
 
-    def read_faces(self) -> Any:
-        """Return the six faces' depths as a float32 array ``(6, res, res)``.
+    def read_faces(self) -> np.ndarray:
+        """Return the six faces' depths as float32 ``(6, res, res)`` (for tests and debugging).
 
         Returns
         -------
         numpy.ndarray
-            Depth (distance to the light over ``far``) per texel, for tests
-            and debugging.
+            Depth (distance to the light over ``far``) per texel.
         """
-        import numpy as np
-
         gl = self._gl
         units = self._window.GetTextureUnitManager()
         unit = units.Allocate()
         self._window.GetState().vtkglActiveTexture(gl.GL_TEXTURE0 + unit)
-        gl.glBindTexture(gl.GL_TEXTURE_CUBE_MAP, self._handle)
+        gl.glBindTexture(gl.GL_TEXTURE_CUBE_MAP, self.handle)
         faces = np.empty((6, self.resolution, self.resolution), np.float32)
         for face in range(6):
             gl.glGetTexImage(
@@ -142,10 +196,8 @@ class DepthCube:
         return faces
 
     def release(self) -> None:
-        """Delete the texture and framebuffer (the window's context must be current)."""
-        if self._handle:
-            self.texture.ReleaseGraphicsResources(self._window)
-            self._gl.glDeleteFramebuffers(1, [self._framebuffer])
-            self._gl.glDeleteTextures(1, [self._handle])
-            self._handle = 0
-            self._framebuffer = 0
+        """Delete the cube and its framebuffer (the window's context must be current)."""
+        handle = self.handle
+        super().release()
+        if handle:
+            self._gl.glDeleteTextures(1, [handle])

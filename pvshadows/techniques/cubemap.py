@@ -8,16 +8,15 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.textures import DepthCube
+from pvshadows.lights import LightKind
 from pvshadows.passes.cube_depth import CubeCaster, CubeDepthPass, caster_face_mask
 from pvshadows.planner import LightPlan
 from pvshadows.report import PassReport
 from pvshadows.scene import vtk_id
 from pvshadows.shading import LightShading
 from pvshadows.techniques.base import FrameContext
+from pvshadows.techniques.filtering import FilterBindings, lookup_shading
 from pvshadows.transforms import translation, view_to_light
-
-#: Side of the tap grid for each ``pcf_taps`` value.
-PCF_GRID = {4: 2, 16: 4}
 
 
 @dataclass
@@ -27,16 +26,45 @@ class CubeState:
     cube: DepthCube
     key: tuple | None = None
     far: float = 1.0
+    nearest: float = 0.0
     frame: int = -1
 
 
-def _far(position: np.ndarray, casters: list) -> float:
-    corners = []
+def distance_range(position: np.ndarray, casters: list) -> tuple[float, float]:
+    """Return the nearest and farthest distance from a light to its casters' bounds.
+
+    Parameters
+    ----------
+    position : numpy.ndarray
+        The light's position.
+    casters : list of ActorState
+        The casters.
+
+    Returns
+    -------
+    tuple of float
+        ``(nearest, far)``: the distance to the closest box (0 inside one) and
+        a distance beyond every corner, the depth that maps to 1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> from pvshadows.techniques.cubemap import distance_range
+    >>> box = SimpleNamespace(bounds=np.array([[1.0, -1, -1], [2, 1, 1]]))
+    >>> near, far = distance_range(np.zeros(3), [box])
+    >>> near, round(far, 3)
+    (1.0, 2.474)
+    """
+    nearest, far = np.inf, 0.0
     for caster in casters:
         lo, hi = caster.bounds
-        corners.append(np.maximum(np.abs(lo - position), np.abs(hi - position)))
-    far = float(np.linalg.norm(np.max(corners, axis=0)))
-    return max(far * 1.01, np.finfo(np.float32).tiny * 1e6)
+        outside = np.maximum(np.maximum(lo - position, position - hi), 0.0)
+        nearest = min(nearest, float(np.linalg.norm(outside)))
+        far = max(
+            far, float(np.linalg.norm(np.maximum(np.abs(lo - position), np.abs(hi - position))))
+        )
+    return nearest, max(far * 1.01, np.finfo(np.float32).tiny * 1e6)
 
 
 class CubemapTechnique:
@@ -53,6 +81,7 @@ class CubemapTechnique:
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
         self._pass = CubeDepthPass(window)
+        self._filters = FilterBindings(window)
         self._states: dict[str, CubeState] = {}
 
     def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
@@ -77,7 +106,6 @@ class CubemapTechnique:
                 state.cube.release()
             state = CubeState(DepthCube(self._window, settings.resolution))
             self._states[vtk_id(plan.light)] = state
-        state.cube.set_linear(settings.filter == "pcf")
         position = plan.pose.position
         key = (
             plan.pose.key(),
@@ -103,7 +131,7 @@ class CubemapTechnique:
                     caster_face_mask(caster.bounds - position),
                 )
             )
-        state.far = _far(position, plan.casters)
+        state.nearest, state.far = distance_range(position, plan.casters)
         reports = self._pass.render(state.cube, casters, state.far, settings.passes, context.timer)
         state.key, state.frame = key, context.frame
         return reports
@@ -119,25 +147,12 @@ class CubemapTechnique:
         Returns
         -------
         LightShading
-            The lookup call, its sampler and its GLSL source.
+            The lookup call with the light's filter, and its samplers.
         """
-        i = plan.vtk_index
-        args = (
-            f"pvsCube{i}, pvsViewToLight{i}, pvsCubeParams{i}, pvsCubeSlope{i}, "
-            "vertexVC.xyz, pvsNormalVC"
-        )
-        if plan.settings.filter == "pcf":
-            call = f"pvsPointShadowPcf({args}, {PCF_GRID[plan.settings.pcf_taps]})"
-            define = "PVS_CUBE_PCF"
-        else:
-            call = f"pvsPointShadowHard({args})"
-            define = "PVS_CUBE_HARD"
-        return LightShading(
-            i, call, {f"pvsCube{i}": "samplerCubeShadow"}, ("shadow_cube.glsl",), (define,)
-        )
+        return lookup_shading("cube", plan.vtk_index, plan.settings)
 
     def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
-        """Bind the light's cube to a texture unit and return the receivers' uniforms.
+        """Bind the light's cube and filter textures and return the receivers' uniforms.
 
         Parameters
         ----------
@@ -152,25 +167,29 @@ class CubemapTechnique:
             Uniform names and values for every receiver.
         """
         state = self._states[vtk_id(plan.light)]
-        state.cube.texture.Activate()
         settings = plan.settings
+        pose = plan.pose
         i = plan.vtk_index
-        return {
-            f"pvsCube{i}": state.cube.texture.GetTextureUnit(),
-            f"pvsViewToLight{i}": view_to_light(context.camera, plan.pose.position),
-            f"pvsCubeParams{i}": (
-                state.far,
-                2.0 / settings.resolution,
-                settings.normal_offset,
-                settings.bias,
-            ),
-            f"pvsCubeSlope{i}": settings.slope_bias,
-        }
+        spot = pose.kind is LightKind.SPOT
+        cone = np.cos(np.radians(pose.cone_angle)) if spot else -2.0
+        uniforms = self._filters.activate(i, settings, state.cube)
+        uniforms.update(
+            {
+                f"pvsViewToLight{i}": view_to_light(context.camera, pose.position),
+                f"pvsParams{i}": (
+                    state.far,
+                    2.0 / settings.resolution,
+                    settings.light_size,
+                    state.nearest,
+                ),
+                f"pvsCone{i}": (*pose.direction, cone),
+            }
+        )
+        return uniforms
 
     def deactivate(self) -> None:
         """Free the texture units bound by :meth:`activate`."""
-        for state in self._states.values():
-            state.cube.texture.Deactivate()
+        self._filters.deactivate()
 
     def cube_of(self, light: vtk.vtkLight) -> DepthCube | None:
         """Return the cube kept for a light, if any (for tests and debugging)."""
@@ -193,3 +212,4 @@ class CubemapTechnique:
         """Release every cube and program."""
         self.keep_only([])
         self._pass.release()
+        self._filters.release()

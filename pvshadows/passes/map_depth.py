@@ -1,0 +1,110 @@
+"""The depth pass of 2D shadow maps (spot and directional lights)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import vtk
+
+from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.gl.programs import compile_program, glsl_source, with_defines
+from pvshadows.gl.textures import DepthMap
+from pvshadows.gl.timing import PassTimer
+from pvshadows.passes.gl_state import depth_only_state
+from pvshadows.report import PassReport
+from pvshadows.transforms import column_major
+
+
+@dataclass
+class MapCaster:
+    """One caster as the map pass draws it.
+
+    Attributes
+    ----------
+    buffers : TriangleBuffers
+        Its triangles on the GPU, in shifted model coordinates.
+    model_to_light : numpy.ndarray
+        ``(4, 4)`` float64 from those coordinates to the light's space.
+    """
+
+    buffers: TriangleBuffers
+    model_to_light: np.ndarray
+
+
+class MapDepthPass:
+    """Fills a :class:`~pvshadows.gl.textures.DepthMap` with linear depth.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context runs the pass.
+    """
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._window = window
+        self._programs: dict[bool, vtk.vtkShaderProgram] = {}
+
+    def _program(self, along_z: bool) -> vtk.vtkShaderProgram:
+        if along_z not in self._programs:
+            defines = {"DEPTH_ALONG_Z": True} if along_z else {}
+            self._programs[along_z] = compile_program(
+                self._window,
+                with_defines(glsl_source("map_depth.vert")),
+                with_defines(glsl_source("distance_depth.frag"), defines),
+            )
+        return self._programs[along_z]
+
+    def render(
+        self,
+        depth: DepthMap,
+        casters: list[MapCaster],
+        light_to_clip: np.ndarray,
+        depth_range: float,
+        *,
+        along_z: bool,
+        timer: PassTimer,
+        detail: str,
+    ) -> list[PassReport]:
+        """Render the casters into the map.
+
+        Parameters
+        ----------
+        depth : DepthMap
+            The target.
+        casters : list of MapCaster
+            What to draw.
+        light_to_clip : numpy.ndarray
+            The map's projection.
+        depth_range : float
+            Distance (spot) or depth (directional) that maps to depth 1.
+        along_z : bool
+            Store depth along light-space z (directional) instead of distance.
+        timer : PassTimer
+            Records the pass's GPU time.
+        detail : str
+            What the report says about the pass.
+
+        Returns
+        -------
+        list of PassReport
+            The pass's report.
+        """
+        program = self._program(along_z)
+        report = PassReport("map depth", "run", detail)
+        with depth_only_state(self._window) as gl, timer.measure(report):
+            depth.bind_as_target()
+            gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
+            self._window.GetShaderCache().ReadyShaderProgram(program)
+            program.SetUniformf("invFar", 1.0 / depth_range)
+            program.SetUniformMatrix4x4v("lightToClip", 1, column_major(light_to_clip))
+            for caster in casters:
+                program.SetUniformMatrix4x4v("modelToLight", 1, column_major(caster.model_to_light))
+                caster.buffers.draw(program)
+        return [report]
+
+    def release(self) -> None:
+        """Release the compiled programs."""
+        for program in self._programs.values():
+            program.ReleaseGraphicsResources(self._window)
+        self._programs.clear()

@@ -1,0 +1,245 @@
+"""Spot and directional shadows from a 2D depth map.
+
+A spot light's map is a perspective view holding its cone and storing the
+distance to the light; a directional light's map is an orthographic view
+fitted to the casters that can shadow what the camera sees, storing depth
+along the light. Either is rendered again only when its light, its casters
+or (directional) its fitted coverage changed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import vtk
+
+from pvshadows.fitting import SunFit, box_in_spot, spot_fit, sun_fit, sun_rotation
+from pvshadows.gl.textures import DepthMap
+from pvshadows.lights import LightKind
+from pvshadows.passes.map_depth import MapCaster, MapDepthPass
+from pvshadows.planner import LightPlan
+from pvshadows.report import PassReport
+from pvshadows.scene import vtk_id
+from pvshadows.shading import LightShading
+from pvshadows.techniques.base import FrameContext
+from pvshadows.techniques.cubemap import distance_range
+from pvshadows.techniques.filtering import FilterBindings, lookup_shading
+from pvshadows.transforms import translation, world_to_view
+
+
+@dataclass
+class MapState:
+    """The map kept for one light between frames, and the light space it was drawn in."""
+
+    depth: DepthMap
+    key: tuple | None = None
+    frame: int = -1
+    drawn: bool = False
+    world_to_light: np.ndarray | None = None
+    light_to_clip: np.ndarray | None = None
+    params: tuple = ()
+
+
+def _kind(plan: LightPlan) -> str:
+    return "sun" if plan.pose.kind is LightKind.DIRECTIONAL else "spot"
+
+
+class MapTechnique:
+    """Keeps a 2D depth map per spot or directional light.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context owns the maps.
+    """
+
+    name = "map"
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._window = window
+        self._pass = MapDepthPass(window)
+        self._filters = FilterBindings(window)
+        self._states: dict[str, MapState] = {}
+
+    def _state(self, plan: LightPlan) -> MapState:
+        key = vtk_id(plan.light)
+        state = self._states.get(key)
+        if state is None or state.depth.resolution != plan.settings.resolution:
+            if state is not None:
+                state.depth.release()
+            state = MapState(DepthMap(self._window, plan.settings.resolution))
+            self._states[key] = state
+        return state
+
+    def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
+        """Bring the light's map up to date for this frame.
+
+        Parameters
+        ----------
+        plan : LightPlan
+            The light's plan (technique ``"map"``).
+        context : FrameContext
+            This frame's renderer, camera, actors, buffers and timer.
+
+        Returns
+        -------
+        list of PassReport
+            The pass run, reused or skipped.
+        """
+        state = self._state(plan)
+        if plan.pose.kind is LightKind.DIRECTIONAL:
+            return self._update_sun(plan, context, state)
+        return self._update_spot(plan, context, state)
+
+    def _update_spot(
+        self, plan: LightPlan, context: FrameContext, state: MapState
+    ) -> list[PassReport]:
+        pose, settings = plan.pose, plan.settings
+        inside = [c for c in plan.casters if box_in_spot(c.bounds, pose)]
+        nearest, far = distance_range(pose.position, inside or plan.casters)
+        fit = spot_fit(pose, settings.resolution, far * 1e-4, far)
+        state.world_to_light = translation(-pose.position)
+        state.light_to_clip = fit.light_to_clip
+        state.params = (far, fit.texel, settings.light_size, nearest)
+        state.drawn = bool(inside)
+        if not inside:
+            state.key = None
+            return [PassReport("map depth", "skipped", "no caster inside the spot's cone")]
+        key = (pose.key(), settings.resolution, tuple(c.key() for c in inside))
+        detail = f"{len(inside)} of {len(plan.casters)} casters inside the cone"
+        return self._render(state, key, inside, context, far, along_z=False, detail=detail)
+
+    def _update_sun(
+        self, plan: LightPlan, context: FrameContext, state: MapState
+    ) -> list[PassReport]:
+        pose, settings = plan.pose, plan.settings
+        actors = context.snapshot.actors
+        fit: SunFit | None = sun_fit(
+            pose,
+            actors,
+            context.camera,
+            context.renderer.GetTiledAspectRatio(),
+            settings.resolution,
+        )
+        state.drawn = fit is not None
+        if fit is None:
+            state.key = None
+            state.world_to_light = sun_rotation(pose)
+            state.params = (1.0, 1.0, 1.0, 0.0)
+            return [PassReport("map depth", "skipped", "no caster can shadow a visible receiver")]
+        drawn = [actors[i] for i in fit.casters]
+        state.world_to_light = fit.world_to_light()
+        state.light_to_clip = np.diag([1.0 / fit.half_width, 1.0 / fit.half_width, 0.0, 1.0])
+        tangent = np.tan(np.radians(settings.light_size))
+        state.params = (fit.depth, fit.texel, fit.half_width, tangent)
+        key = (pose.key(), settings.resolution, fit.key(), tuple(c.key() for c in drawn))
+        detail = (
+            f"fitted {2 * fit.half_width:.4g} wide to {len(drawn)} of "
+            f"{len(plan.casters)} casters ({fit.texel:.3g} per texel)"
+        )
+        return self._render(state, key, drawn, context, fit.depth, along_z=True, detail=detail)
+
+    def _render(
+        self,
+        state: MapState,
+        key: tuple,
+        casters: list,
+        context: FrameContext,
+        depth_range: float,
+        *,
+        along_z: bool,
+        detail: str,
+    ) -> list[PassReport]:
+        if key == state.key:
+            return [
+                PassReport(
+                    "map depth",
+                    "reused",
+                    f"light, casters and coverage unchanged since frame {state.frame}",
+                )
+            ]
+        drawn = [
+            MapCaster(
+                context.buffers.get(caster),
+                state.world_to_light @ caster.matrix @ translation(caster.triangles.center),
+            )
+            for caster in casters
+        ]
+        reports = self._pass.render(
+            state.depth,
+            drawn,
+            state.light_to_clip,
+            depth_range,
+            along_z=along_z,
+            timer=context.timer,
+            detail=detail,
+        )
+        state.key, state.frame = key, context.frame
+        return reports
+
+    def shading(self, plan: LightPlan) -> LightShading:
+        """Return how receivers read this light's map.
+
+        Parameters
+        ----------
+        plan : LightPlan
+            The light's plan.
+
+        Returns
+        -------
+        LightShading
+            The lookup call with the light's filter, and its samplers; a light
+            whose map was skipped (nothing to shadow) shows no shadow.
+        """
+        drawn = self._states[vtk_id(plan.light)].drawn
+        return lookup_shading(_kind(plan), plan.vtk_index, plan.settings, has_map=drawn)
+
+    def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+        """Bind the light's map and filter textures and return the receivers' uniforms.
+
+        Parameters
+        ----------
+        plan : LightPlan
+            The light's plan.
+        context : FrameContext
+            This frame's camera.
+
+        Returns
+        -------
+        dict
+            Uniform names and values for every receiver.
+        """
+        state = self._states[vtk_id(plan.light)]
+        i = plan.vtk_index
+        uniforms = self._filters.activate(i, plan.settings, state.depth if state.drawn else None)
+        view_to_world = np.linalg.inv(world_to_view(context.camera))
+        uniforms[f"pvsViewToLight{i}"] = state.world_to_light @ view_to_world
+        uniforms[f"pvsParams{i}"] = state.params
+        if _kind(plan) == "spot":
+            cone = float(np.cos(np.radians(plan.pose.cone_angle)))
+            uniforms[f"pvsLightToClip{i}"] = state.light_to_clip
+            uniforms[f"pvsCone{i}"] = (*plan.pose.direction, cone)
+        return uniforms
+
+    def deactivate(self) -> None:
+        """Free the texture units bound by :meth:`activate`."""
+        self._filters.deactivate()
+
+    def keep_only(self, plans: list[LightPlan]) -> None:
+        """Release the maps of lights that no longer use this technique.
+
+        Parameters
+        ----------
+        plans : list of LightPlan
+            This frame's plans.
+        """
+        alive = {vtk_id(p.light) for p in plans if p.technique == self.name}
+        for key in set(self._states) - alive:
+            self._states.pop(key).depth.release()
+
+    def release(self) -> None:
+        """Release every map, program and filter texture."""
+        self.keep_only([])
+        self._pass.release()
+        self._filters.release()
