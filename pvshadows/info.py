@@ -60,6 +60,10 @@ class Capabilities:
             "cubemap (passes='single')": "available"
             if self.geometry_shaders
             else "unavailable: needs geometry shaders (OpenGL 3.2)",
+            "volume (extrude='gpu')": "available"
+            if self.geometry_shaders
+            else "unavailable: needs geometry shaders (OpenGL 3.2)",
+            "volume (extrude='cpu')": "available",
         }
         return found
 

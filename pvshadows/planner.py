@@ -19,7 +19,10 @@ from pvshadows.snapshot import ActorState, Snapshot
 #: Technique ``"auto"`` picks for each kind of light.
 AUTO_TECHNIQUE = {LightKind.POINT: "cubemap"}
 #: Kinds of light each technique can serve.
-SERVES = {"cubemap": (LightKind.POINT, LightKind.SPOT)}
+SERVES = {
+    "cubemap": (LightKind.POINT, LightKind.SPOT),
+    "volume": (LightKind.POINT, LightKind.SPOT, LightKind.DIRECTIONAL),
+}
 
 
 @dataclass

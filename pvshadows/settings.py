@@ -12,13 +12,19 @@ from dataclasses import dataclass, fields, replace
 from numbers import Integral, Real
 
 #: Techniques a light can be given; "auto" lets the planner choose.
-TECHNIQUES = ("auto", "cubemap")
+TECHNIQUES = ("auto", "cubemap", "volume")
 #: Filters of the map-based techniques.
 FILTERS = ("hard", "pcf")
 #: Ways to fill a depth cube.
 CUBE_PASSES = ("single", "six")
 #: Allowed ``pcf_taps``: a 2x2 or 4x4 grid of hardware-filtered taps.
 PCF_TAPS = (4, 16)
+#: How shadow volumes are counted: decided per frame, or forced.
+ZMODES = ("auto", "zpass", "zfail")
+#: Where shadow volumes are extruded: a geometry shader, or numpy.
+EXTRUDE = ("gpu", "cpu")
+#: What an open caster of a shadow-volume light does.
+ON_OPEN = ("fallback", "raise")
 #: Smallest and largest shadow-map resolution (texels per side of a face).
 RESOLUTION_RANGE = (64, 4096)
 
@@ -30,7 +36,8 @@ class ShadowSettings:
     Attributes
     ----------
     technique : str
-        ``"auto"`` (the planner chooses) or ``"cubemap"``.
+        ``"auto"`` (the planner chooses), ``"cubemap"`` or ``"volume"``
+        (stencil shadow volumes, every kind of light).
     resolution : int
         Texels per side of each shadow-map face, 64 to 4096.
     filter : str
@@ -48,6 +55,18 @@ class ShadowSettings:
     normal_offset : float
         Lookup point moved along the surface normal by this many texels,
         times the sine of the angle of incidence.
+    zmode : str
+        ``"volume"``: ``"auto"`` (z-pass when the camera is outside every
+        shadow volume, z-fail otherwise, decided each frame), ``"zpass"`` or
+        ``"zfail"`` to force one.
+    extrude : str
+        ``"volume"``: ``"gpu"`` (a geometry shader extrudes the silhouette)
+        or ``"cpu"`` (numpy builds the volumes when the light or a caster
+        moves).
+    on_open : str
+        ``"volume"``: what a caster that is not closed does, ``"fallback"``
+        (it casts from a shadow map instead, with a warning) or ``"raise"``
+        (a ``ValueError`` naming it).
 
     Notes
     -----
@@ -66,6 +85,9 @@ class ShadowSettings:
     bias: float = 0.5
     slope_bias: float = 0.5
     normal_offset: float = 0.75
+    zmode: str = "auto"
+    extrude: str = "gpu"
+    on_open: str = "fallback"
 
 
 def _choice(name: str, value: object, allowed: tuple) -> object:
@@ -109,6 +131,9 @@ _CHECKS = {
     "bias": lambda v: _texels("bias", v),
     "slope_bias": lambda v: _texels("slope_bias", v),
     "normal_offset": lambda v: _texels("normal_offset", v),
+    "zmode": lambda v: _choice("zmode", v, ZMODES),
+    "extrude": lambda v: _choice("extrude", v, EXTRUDE),
+    "on_open": lambda v: _choice("on_open", v, ON_OPEN),
 }
 
 
