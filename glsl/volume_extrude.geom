@@ -31,6 +31,10 @@ uniform vec4 lightModel;
 uniform int caps;
 // Clip-space depth offset (times w) of the light cap; see volume_homogeneous.vert.
 uniform float capDepthOffset;
+// 0: extrude to infinity (w = 0). Above 0: extrude this far (model units)
+// instead, beyond every receiver, for parallel projections, which cannot
+// draw points at infinity.
+uniform float extrudeTo;
 
 bool pvsFacesLight(vec3 a, vec3 b, vec3 c, int ia, int ib, int ic)
 {
@@ -54,7 +58,12 @@ bool pvsFacesLight(vec3 a, vec3 b, vec3 c, int ia, int ib, int ic)
 
 vec4 pvsAtInfinity(vec3 p)
 {
-  return modelToClip * vec4(lightModel.w * p - lightModel.xyz, 0.0);
+  vec3 away = lightModel.w * p - lightModel.xyz;
+  if (extrudeTo > 0.0)
+  {
+    return modelToClip * vec4(p + away * (extrudeTo / length(away)), 1.0);
+  }
+  return modelToClip * vec4(away, 0.0);
 }
 
 void main()

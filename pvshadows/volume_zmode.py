@@ -14,8 +14,13 @@ clamping the rays start at the camera) lie in the convex hull of the
 camera's near region; if the hull of that region and the light (swept
 towards the light to beyond the box for a directional light) misses every
 caster's box, no view ray starts inside a volume and z-pass is right.
-Otherwise z-fail is used. A parallel projection has its view rays start at
-infinity behind the camera: always z-fail.
+Otherwise z-fail is used.
+
+A parallel projection cannot draw points at infinity (they all have
+``w = 0`` in clip space), and its view rays start at infinity behind the
+camera. With it the volumes are extruded to a finite distance beyond every
+receiver instead, so they are finite and closed, the view rays start outside
+all of them, and z-pass is right.
 """
 
 from __future__ import annotations
@@ -97,6 +102,9 @@ def hull_touches_box(points: np.ndarray, box: np.ndarray, margin: float = 1e-9) 
     """
     points = np.asarray(points, dtype=np.float64)
     box = np.asarray(box, dtype=np.float64)
+    slack = margin * max(float(np.abs(points).max()), float(np.abs(box).max()), 1e-300)
+    if np.any(points.min(axis=0) > box[1] + slack) or np.any(points.max(axis=0) < box[0] - slack):
+        return False  # the boxes around them do not even meet
     centre = 0.5 * (box[0] + box[1])
     points = points - centre
     half = 0.5 * (box[1] - box[0])
@@ -194,7 +202,10 @@ def choose_zmode(
         return zmode, f"{zmode} forced by zmode={zmode!r}"
     region = near_region(renderer)
     if region is None:
-        return "zfail", "parallel projection: view rays start at infinity behind the camera"
+        return "zpass", (
+            "parallel projection: the volumes end beyond the scene instead of at infinity, "
+            "and the view rays start outside every one of them"
+        )
     for name, box in casters:
         if hull_touches_box(light_region(light, region, box), box):
             return "zfail", (

@@ -389,3 +389,44 @@ def test_disable_releases_the_masks(scene):
 def test_settings_are_validated(scene, setting, value, kind):
     with pytest.raises(kind, match=setting):
         scene.plotter.shadows.enable(technique="volume", **{setting: value})
+
+
+@pytest.mark.parametrize("extrude", ["gpu", "cpu"])
+def test_parallel_projection_casts_the_analytic_disk(extrude):
+    # A parallel projection cannot draw points at infinity: volumes end beyond the scene.
+    height, radius, center_z = 4.0, 0.8, 1.5
+    pl = pv.Plotter(off_screen=True, window_size=[300, 300], lighting="none")
+    pl.add_mesh(pv.Plane(i_size=12, j_size=12), color="white")
+    sphere = pv.Sphere(
+        radius=radius, center=(0, 0, center_z), theta_resolution=96, phi_resolution=96
+    )
+    pl.add_mesh(sphere, color="white")
+    light = point_light((0, 0, height))
+    pl.add_light(light)
+    pl.camera_position = [(0, 0, 20), (0, 0, 0), (0, 1, 0)]
+    pl.enable_parallel_projection()
+    pl.camera.parallel_scale = 6.0
+    enable(pl, extrude=extrude)
+    assert any(n.startswith("zpass: parallel projection") for n in volume_light_report(pl).notes)
+    shown = pl.shadows.visibility(light)
+    n = shown.shape[0]
+    coords = (np.arange(n) + 0.5) / n * 12.0 - 6.0
+    x, y = np.meshgrid(coords, coords[::-1])
+    r = np.hypot(x, y)
+    disk = height * np.tan(np.arcsin(radius / (height - center_z)))
+    ground = r > radius * 1.02
+    inside = ground & (r < disk - 0.05)  # 0.05: a bit more than one pixel (0.04)
+    outside = ground & (r > disk + 0.05) & (r < 5.5)
+    assert inside.sum() > 1000
+    assert np.all(shown[inside] < 0.5)
+    assert np.all(shown[outside] > 0.5)
+
+
+def test_resizing_the_window_resizes_the_masks():
+    scene = standard_scene(window_size=(320, 240))
+    pl = scene.plotter
+    enable(pl)
+    pl.window_size = [400, 260]
+    draw(pl)
+    assert pl.shadows._renderers[0].technique("volume").mask_of(scene.light).size == (400, 260)
+    assert pl.shadows.measure(scene.light).misclassified <= EXACT

@@ -66,6 +66,10 @@ class VolumeDraw:
         ``(first, count, part)`` index ranges to draw, ``part`` one of
         ``"all"`` (``"gpu"``: the shader emits what the counting needs),
         ``"sides"``, ``"light"`` (light cap) or ``"dark"`` (dark cap).
+    extrude_to : float
+        ``0``: extruded to infinity (``w = 0``); above 0, ``"gpu"`` only:
+        extruded that far (model units) from the caster, for parallel
+        projections (``"cpu"`` volumes are built finite instead).
     """
 
     buffers: IndexedBuffers
@@ -74,6 +78,7 @@ class VolumeDraw:
     light_model: np.ndarray
     mirrored: bool
     pieces: list[tuple[int, int, str]] = field(default_factory=list)
+    extrude_to: float = 0.0
 
 
 @dataclass
@@ -304,6 +309,7 @@ class VolumePasses:
             program.SetUniform4f("lightModel", np.asarray(draw.light_model, np.float32).tolist())
             program.SetUniformi("caps", int(caps))
             program.SetUniformf("capDepthOffset", CAP_DEPTH_OFFSET)
+            program.SetUniformf("extrudeTo", float(draw.extrude_to))
             for first, count, _ in draw.pieces:
                 draw.buffers.draw(program, gl.GL_TRIANGLES_ADJACENCY, first, count)
         else:

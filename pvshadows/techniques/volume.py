@@ -321,7 +321,12 @@ class VolumeTechnique:
         if self._depth_frame != context.frame:
             reports.append(self._depth_pass(context, camera, width, height))
         plan_batches = batches([mesh.n_bodies for _, mesh in closed])
-        draws, built = self._volume_draws(plan, closed, plan_batches, camera, light, zmode, extrude)
+        reach = _finite_reach(context, light)
+        if reach:
+            plan.notes.append("parallel projection: volumes end beyond the scene, not at infinity")
+        draws, built = self._volume_draws(
+            plan, closed, plan_batches, camera, light, zmode, extrude, reach
+        )
         reports.extend(built)
         bodies = [sum(e - s for _, s, e in batch) for batch in plan_batches]
         record = PassReport(
@@ -458,8 +463,13 @@ class VolumeTechnique:
         light: np.ndarray,
         zmode: str,
         extrude: str,
+        reach: float,
     ) -> tuple[list[list[VolumeDraw]], list[PassReport]]:
-        """Each batch's draws, and a report of the CPU rebuild (``extrude="cpu"``)."""
+        """Each batch's draws, and a report of the CPU rebuild (``extrude="cpu"``).
+
+        ``reach`` is 0 to extrude to infinity, or how far (world units) to
+        extrude volumes for a parallel projection.
+        """
         ranges_of: dict[int, list[tuple[int, int]]] = {}
         for batch in plan_batches:
             for number, first, end in batch:
@@ -472,6 +482,10 @@ class VolumeTechnique:
             if light_model[3] != 0.0:
                 light_model = np.append(light_model[:3] / light_model[3], 1.0)
             mirrored = bool(np.linalg.det(model[:3, :3]) < 0.0)
+            # Model units that are at least `reach` world units in every direction.
+            extrude_to = (
+                reach / np.linalg.svd(model[:3, :3], compute_uv=False)[-1] if reach else 0.0
+            )
             if extrude == "gpu":
                 buffers = self._mesh_buffers(caster, mesh)
                 draws = []
@@ -479,10 +493,18 @@ class VolumeTechnique:
                     a, b = int(mesh.body_starts[first]), int(mesh.body_starts[end])
                     piece = (6 * a, 6 * (b - a), "all")
                     draws.append(
-                        VolumeDraw(buffers, "gpu", camera @ model, light_model, mirrored, [piece])
+                        VolumeDraw(
+                            buffers,
+                            "gpu",
+                            camera @ model,
+                            light_model,
+                            mirrored,
+                            [piece],
+                            extrude_to,
+                        )
                     )
             else:
-                volume = self._cpu_volume(plan, caster, mesh, light_model)
+                volume = self._cpu_volume(plan, caster, mesh, light_model, extrude_to)
                 if volume.seconds:
                     rebuilt += 1
                     seconds += volume.seconds
@@ -535,10 +557,15 @@ class VolumeTechnique:
         return buffers
 
     def _cpu_volume(
-        self, plan: LightPlan, caster: ActorState, mesh: VolumeMesh, light_model: np.ndarray
+        self,
+        plan: LightPlan,
+        caster: ActorState,
+        mesh: VolumeMesh,
+        light_model: np.ndarray,
+        extrude_to: float,
     ) -> _CpuVolume:
         cache_key = (vtk_id(plan.light), vtk_id(caster.actor))
-        key = (id(caster.triangles), caster.triangles.version, light_model.tobytes())
+        key = (id(caster.triangles), caster.triangles.version, light_model.tobytes(), extrude_to)
         cached = self._cpu.get(cache_key)
         if cached is not None and cached.key == key:
             cached.seconds = 0.0
@@ -549,6 +576,13 @@ class VolumeTechnique:
             shining[:3] = -shining[:3]
         geometry = volume_geometry(mesh.points, mesh.triangles, mesh.adjacency, shining)
         n = len(mesh.points)
+        positions = geometry.positions
+        if extrude_to:
+            away = mesh.points - shining[:3] if shining[3] else np.broadcast_to(shining[:3], (n, 3))
+            length = np.linalg.norm(away, axis=1, keepdims=True)
+            positions = positions.copy()
+            positions[n:, :3] = mesh.points + away * (extrude_to / np.maximum(length, 1e-300))
+            positions[n:, 3] = 1.0
         body = mesh.point_body
         sides = geometry.sides
         side_body = body[sides[:, 0] % n]
@@ -571,7 +605,7 @@ class VolumeTechnique:
             cached.buffers.release()
         volume = _CpuVolume(
             key,
-            IndexedBuffers(self._window, geometry.positions, np.concatenate(rows)),
+            IndexedBuffers(self._window, positions, np.concatenate(rows)),
             starts,
             bases,
             seconds,
@@ -713,6 +747,21 @@ def _open_reason(caster: ActorState) -> str:
     except OpenMeshError as error:
         return str(error)
     return f"{caster.name} is open"  # pragma: no cover
+
+
+def _finite_reach(context: FrameContext, light: np.ndarray) -> float:
+    """Return 0 (extrude to infinity), or how far to extrude for a parallel projection.
+
+    Far enough that every volume reaches past every actor: four times the
+    diagonal of the box around the actors and a positional light.
+    """
+    if not context.camera.GetParallelProjection():
+        return 0.0
+    boxes = [actor.bounds for actor in context.snapshot.actors]
+    if light[3] != 0.0:
+        boxes.append(np.stack([light[:3], light[:3]]))
+    corners = np.concatenate(boxes)
+    return 4.0 * max(float(np.linalg.norm(np.ptp(corners, axis=0))), 1e-300)
 
 
 def _model_matrix(actor: ActorState) -> np.ndarray:
