@@ -14,7 +14,7 @@ import pyvista as pv
 
 import pvshadows  # noqa: F401  (registers pl.shadows; installing pvshadows also does)
 
-pl = pv.Plotter(off_screen=True, window_size=(1024, 768), lighting="none")
+pl = pv.Plotter(off_screen=True, window_size=(800, 600), lighting="none")
 pl.set_background("#f4f1ea", top="#bcc8d6")
 style = {"ambient": 0.15, "diffuse": 0.85, "specular": 0.2, "smooth_shading": True}
 pl.add_mesh(pv.Plane(i_size=10, j_size=10), color="#d9d4c7", **style)

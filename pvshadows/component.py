@@ -238,8 +238,10 @@ class ShadowsComponent:
     def show_volumes(self, show: bool = True) -> None:
         """Draw the shadow volumes translucent over the scene, for debugging.
 
-        Only lights using ``technique="volume"`` have volumes; each is drawn
-        as counted in that frame (sides, and the caps where z-fail was used).
+        Only lights using ``technique="volume"`` have volumes; the sides of
+        each are drawn as counted in that frame, depth-tested against the
+        scene (the caps lie on the casters and at infinity, so they are left
+        out).
 
         Parameters
         ----------

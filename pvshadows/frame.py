@@ -173,8 +173,13 @@ class RendererShadows:
         if self.show_debug and self.probe_index < 0 and self._context is not None:
             for technique in self._active:
                 draw = getattr(technique, "draw_debug", None)
-                if draw is not None:
-                    draw(self._context)
+                try:
+                    if draw is not None:
+                        draw(self._context)
+                except Exception as error:
+                    warnings.warn(
+                        f"pvshadows could not draw its debug overlay: {error}", stacklevel=1
+                    )
         for technique in self._active:
             technique.deactivate()
         self._active = []

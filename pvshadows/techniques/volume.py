@@ -7,7 +7,8 @@ viewport (:mod:`pvshadows.gl.mask_target`):
    per frame, shared by all lights; skipped when the camera and actors did
    not change);
 2. every closed caster's shadow volume — silhouette extruded to infinity
-   (``w = 0``), with light and dark caps for z-fail — counted in the 8-bit
+   (``w = 0``; with a parallel projection, to a finite distance beyond the
+   scene), with light and dark caps for z-fail — counted in the 8-bit
    stencil, z-pass when the camera is outside every volume and z-fail
    otherwise (:mod:`pvshadows.volume_zmode`), with depth clamping, in batches
    of at most 255 bodies;
@@ -272,7 +273,7 @@ class VolumeTechnique:
         settings = plan.settings
         closed, open_casters = self._split_casters(plan)
         reports: list[PassReport] = []
-        state.fallback = self._plan_fallback(plan, open_casters, state)
+        state.fallback = self._plan_fallback(plan, open_casters)
         light = _homogeneous_light(plan)
         enclosing = self._enclosing_caster(light, closed)
         if enclosing is not None:
@@ -372,7 +373,7 @@ class VolumeTechnique:
         return closed, open_casters
 
     def _plan_fallback(
-        self, plan: LightPlan, open_casters: list[ActorState], state: _LightState
+        self, plan: LightPlan, open_casters: list[ActorState]
     ) -> tuple[str, LightPlan] | None:
         if not open_casters:
             return None
