@@ -181,9 +181,11 @@ def all_cases() -> list[BenchCase]:
     Returns
     -------
     list of BenchCase
-        Point light: cube map x resolution x filter x passes, and the soft
-        filters; spot light: 2D map x resolution x filter, and VTK's
-        ``enable_shadows()``; directional light: fitted 2D map x resolution x filter.
+        Point light: cube map x resolution x filter x passes, the soft
+        filters, and shadow volumes (GPU and CPU extrusion, z-pass and
+        z-fail); spot light: 2D map x resolution x filter, volumes, and VTK's
+        ``enable_shadows()``; directional light: fitted 2D map x resolution x
+        filter, and volumes.
 
     Examples
     --------
@@ -193,10 +195,136 @@ def all_cases() -> list[BenchCase]:
     """
     cases = cubemap_cases()
     cases += [c for c in filter_cases("cubemap", "point", [1024]) if c.soft]
+    cases += volume_cases()
     cases += filter_cases("map", "spot", [512, 1024, 2048])
+    cases += volume_cases(zmodes=("auto",), light="spot")
     cases.append(BenchCase("vtk", {}, "spot"))
     cases += filter_cases("map", "directional", [1024, 2048])
+    cases += volume_cases(zmodes=("auto",), light="directional")
     return cases
+
+
+def volume_cases(
+    extrudes: Iterable[str] = ("gpu", "cpu"),
+    zmodes: Iterable[str] = ("zpass", "zfail"),
+    light: str = "point",
+) -> list[BenchCase]:
+    """Return the shadow-volume cases: GPU and CPU extrusion, each counted z-pass and z-fail.
+
+    Parameters
+    ----------
+    extrudes, zmodes : iterable
+        The values to combine.
+    light : str, default: "point"
+        The scene's light.
+
+    Returns
+    -------
+    list of BenchCase
+        One case per combination.
+
+    Examples
+    --------
+    >>> from pvshadows.bench import volume_cases
+    >>> [case.label for case in volume_cases(extrudes=("gpu",))]
+    ['volume (point) extrude=gpu zmode=zpass', 'volume (point) extrude=gpu zmode=zfail']
+    """
+    return [
+        BenchCase("volume", {"extrude": e, "zmode": z}, light) for e in extrudes for z in zmodes
+    ]
+
+
+def silhouette_timings(
+    sizes: Iterable[int] = (100_000, 1_000_000),
+    *,
+    repeats: int = 3,
+    progress: Callable[[str], None] = print,
+) -> list[dict]:
+    """Time building shadow volumes on the CPU alone, for closed spheres of each size.
+
+    Parameters
+    ----------
+    sizes : iterable of int
+        Approximate triangle counts.
+    repeats : int, default: 3
+        Timed repetitions; medians are reported.
+    progress : callable, default: print
+        Receives one line per size.
+
+    Returns
+    -------
+    list of dict
+        :func:`pvshadows.silhouette.time_silhouette`'s figures per size, plus
+        ``prepare_s``: the one-time preparation for volumes (welding,
+        checking, adjacency, bodies; :func:`pvshadows.volume_casters.prepare_volume_mesh`).
+
+    Examples
+    --------
+    >>> from pvshadows.bench import silhouette_timings
+    >>> silhouette_timings([2000], repeats=1, progress=lambda line: None)[0]["n_triangles"] > 1000
+    True
+    """
+    import pyvista as pv
+
+    from pvshadows.silhouette import time_silhouette
+    from pvshadows.volume_casters import prepare_volume_mesh
+
+    rows = []
+    for size in sizes:
+        row = time_silhouette(size, repeats=repeats)
+        resolution = max(int(np.sqrt(size / 2.0)), 8)
+        sphere = pv.Sphere(theta_resolution=resolution, phi_resolution=resolution + 2)
+        times = []
+        for _ in range(repeats):
+            start = time.perf_counter()
+            prepare_volume_mesh(sphere.points, sphere.regular_faces, "sphere")
+            times.append(time.perf_counter() - start)
+        row["prepare_s"] = float(statistics.median(times))
+        rows.append(row)
+        progress(
+            f"silhouettes, {row['n_triangles']} triangles: per-frame rebuild "
+            f"{1e3 * (row['silhouette_point_s'] + row['volume_point_s']):.1f} ms (point light), "
+            f"{1e3 * (row['silhouette_directional_s'] + row['volume_directional_s']):.1f} ms "
+            f"(directional); once per mesh {1e3 * row['prepare_s']:.0f} ms"
+        )
+    return rows
+
+
+def append_silhouette_table(timings: list[dict], out: Path) -> str:
+    """Append the silhouette timings to ``out/bench.md`` as a second table.
+
+    Parameters
+    ----------
+    timings : list of dict
+        From :func:`silhouette_timings`.
+    out : pathlib.Path
+        Folder holding ``bench.md`` (created if needed).
+
+    Returns
+    -------
+    str
+        The section written, to print.
+    """
+    lines = [
+        "",
+        'Shadow volumes built on the CPU (extrude="cpu"), closed UV spheres, median ms:',
+        "",
+        "| triangles | silhouette edges | silhouette + volume, point light "
+        "| silhouette + volume, directional | once per mesh: prepare (weld, check, adjacency) |",
+        "| ---: | ---: | ---: | ---: | ---: |",
+    ]
+    lines += [
+        f"| {t['n_triangles']} | {t['n_silhouette_edges']} "
+        f"| {1e3 * (t['silhouette_point_s'] + t['volume_point_s']):.1f} "
+        f"| {1e3 * (t['silhouette_directional_s'] + t['volume_directional_s']):.1f} "
+        f"| {1e3 * t['prepare_s']:.0f} |"
+        for t in timings
+    ]
+    section = "\n".join(lines) + "\n"
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / "bench.md", "a", encoding="utf-8") as handle:
+        handle.write(section)
+    return section
 
 
 class PairedClock:

@@ -44,15 +44,30 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _bench(args: argparse.Namespace) -> int:
-    from pvshadows.bench import all_cases, cubemap_cases, plot_frontier, run_bench, write_table
+    from pvshadows.bench import (
+        BenchCase,
+        all_cases,
+        append_silhouette_table,
+        cubemap_cases,
+        plot_frontier,
+        run_bench,
+        silhouette_timings,
+        volume_cases,
+        write_table,
+    )
 
     cases = all_cases()
+    sizes: tuple[int, ...] = (100_000, 1_000_000)
     if args.quick:
         cases = cubemap_cases(resolutions=(256,), passes=("single",))
+        cases += volume_cases(extrudes=("gpu",), zmodes=("zpass",))
+        cases.append(BenchCase("map", {"resolution": 256, "filter": "hard"}, "spot"))
+        sizes = (20_000,)
     rows = run_bench(cases, frames=args.frames, window_size=args.size)
     out = Path(args.out)
     write_table(rows, out)
     plot_frontier(rows, out / "frontier.png")
+    print(append_silhouette_table(silhouette_timings(sizes, repeats=1 if args.quick else 3), out))
     print(f"wrote {out / 'bench.csv'}, {out / 'bench.md'} and {out / 'frontier.png'}")
     return 0
 

@@ -54,6 +54,7 @@ class ShadowsComponent:
         self._reader = SceneReader(self._actor_name)
         self._renderers: list[RendererShadows] = []
         self._traced: tuple | None = None
+        self._show_volumes = False
 
     # -- enabling --------------------------------------------------------------------------
 
@@ -75,13 +76,16 @@ class ShadowsComponent:
         ----------
         technique : str, default: "auto"
             ``"auto"`` lets pvshadows choose per light (``"cubemap"`` for
-            point lights), or name one technique for all lights.
+            point lights), or name one technique for all lights
+            (``"volume"``: stencil shadow volumes, pixel-exact hard shadows
+            from every kind of light).
         lights : iterable of pyvista.Light, optional
             Only these lights cast shadows. By default every light does.
         **settings
             Defaults for every light: ``resolution``, ``filter``,
             ``pcf_taps``, ``passes``, ``bias``, ``slope_bias``,
-            ``normal_offset`` (see :class:`pvshadows.settings.ShadowSettings`).
+            ``normal_offset``, and for volumes ``zmode``, ``extrude``,
+            ``on_open`` (see :class:`pvshadows.settings.ShadowSettings`).
 
         Raises
         ------
@@ -103,12 +107,15 @@ class ShadowsComponent:
         if lights is not None:
             chosen = {vtk_id(self._check_light(light, "lights")) for light in lights}
         self._check_scene()
+        self._check_volumes(defaults)
         self._defaults, self._lights = defaults, chosen
         if not self._renderers:
             self._renderers = [
                 RendererShadows(renderer, self._settings_for, self._reader)
                 for renderer in self._plotter.renderers
             ]
+            for renderer in self._renderers:
+                renderer.show_debug = self._show_volumes
         self._plotter.render()
 
     def disable(self) -> None:
@@ -169,6 +176,7 @@ class ShadowsComponent:
                 f"it serves {allowed} lights"
             )
             raise ValueError(msg)
+        self._check_volumes(updated)
         self._per_light[vtk_id(light)] = updated
         self._plotter.render()
 
@@ -227,6 +235,40 @@ class ShadowsComponent:
         >>> pl.shadows.set_receiver(label, False)
         """
         self._reader.receiving[vtk_id(self._check_actor(actor, receive))] = bool(receive)
+
+    def show_volumes(self, show: bool = True) -> None:
+        """Draw the shadow volumes translucent over the scene, for debugging.
+
+        Only lights using ``technique="volume"`` have volumes; the sides of
+        each are drawn as counted in that frame, depth-tested against the
+        scene (the caps lie on the casters and at infinity, so they are left
+        out).
+
+        Parameters
+        ----------
+        show : bool, default: True
+            ``False`` to stop drawing them.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> import pvshadows
+        >>> pl = pv.Plotter(off_screen=True, lighting="none")
+        >>> _ = pl.add_mesh(pv.Plane(i_size=10, j_size=10))
+        >>> _ = pl.add_mesh(pv.Cube(center=(0, 0, 1)))
+        >>> pl.add_light(pv.Light(position=(0, 0, 3), positional=True, cone_angle=180))
+        >>> pl.shadows.enable(technique="volume")
+        >>> pl.shadows.show_volumes(True)
+        >>> image = pl.screenshot(return_img=True)
+        """
+        if not isinstance(show, bool | np.bool_):
+            msg = f"show must be True or False, got {show!r}"
+            raise TypeError(msg)
+        self._show_volumes = bool(show)
+        for renderer in self._renderers:
+            renderer.show_debug = self._show_volumes
+        if self._renderers:
+            self._plotter.render()
 
     # -- what happened and how right it was ------------------------------------------------
 
@@ -378,6 +420,26 @@ class ShadowsComponent:
                 actor = actors.GetNextActor()
                 if actor.GetVisibility() and actor.GetMapper() is not None:
                     self._reader.triangles_of(actor)
+
+    def _check_volumes(self, settings: ShadowSettings) -> None:
+        """Ask for a stencil buffer before the first render; check casters for ``on_open="raise"``.
+
+        Volumes are counted in pvshadows' own framebuffer, so a window that
+        already rendered without a stencil buffer works too.
+        """
+        if settings.technique != "volume":
+            return
+        window = self._plotter.render_window
+        if window is not None and not window.GetInitialized():
+            window.SetStencilCapable(1)
+        if settings.on_open == "raise":
+            from pvshadows.techniques.volume import require_closed
+
+            casters = []
+            for renderer in self._plotter.renderers:
+                for state in self._reader.read(renderer).casters:
+                    casters.append((state.name, state.triangles))
+            require_closed(casters)
 
     def _plan_of(self, light: vtk.vtkLight | None) -> tuple[RendererShadows, LightPlan]:
         if not self._renderers:

@@ -69,6 +69,9 @@ class RendererShadows:
         self.snapshot: Snapshot | None = None
         self.last_frame = FrameReport()
         self.error: Exception | None = None
+        #: Let techniques draw debug overlays (``draw_debug``) over the finished frame.
+        self.show_debug = False
+        self._context: FrameContext | None = None
 
     def technique(self, name: str) -> Technique:
         """Return the object running technique ``name`` in this renderer.
@@ -121,6 +124,7 @@ class RendererShadows:
             self._buffers,
             self._timer,
         )
+        self._context = context
         report = FrameReport()
         uniforms: dict[str, object] = {PROBE_UNIFORM: self.probe_index}
         shadings = []
@@ -166,6 +170,16 @@ class RendererShadows:
         return self._edits[key]
 
     def _on_end(self, renderer: vtk.vtkRenderer, event: str) -> None:
+        if self.show_debug and self.probe_index < 0 and self._context is not None:
+            for technique in self._active:
+                draw = getattr(technique, "draw_debug", None)
+                try:
+                    if draw is not None:
+                        draw(self._context)
+                except Exception as error:
+                    warnings.warn(
+                        f"pvshadows could not draw its debug overlay: {error}", stacklevel=1
+                    )
         for technique in self._active:
             technique.deactivate()
         self._active = []

@@ -60,6 +60,11 @@ class Capabilities:
             "cubemap (passes='single')": "available"
             if self.geometry_shaders
             else "unavailable: needs geometry shaders (OpenGL 3.2)",
+            "map (spot, directional)": "available",
+            "volume (extrude='gpu')": "available"
+            if self.geometry_shaders
+            else "unavailable: needs geometry shaders (OpenGL 3.2)",
+            "volume (extrude='cpu')": "available",
         }
         return found
 

@@ -22,6 +22,7 @@ AUTO_TECHNIQUE = {LightKind.POINT: "cubemap", LightKind.SPOT: "map", LightKind.D
 SERVES = {
     "cubemap": (LightKind.POINT, LightKind.SPOT),
     "map": (LightKind.SPOT, LightKind.DIRECTIONAL),
+    "volume": (LightKind.POINT, LightKind.SPOT, LightKind.DIRECTIONAL),
 }
 
 

@@ -12,7 +12,7 @@ from dataclasses import dataclass, fields, replace
 from numbers import Integral, Real
 
 #: Techniques a light can be given; "auto" lets the planner choose.
-TECHNIQUES = ("auto", "cubemap", "map")
+TECHNIQUES = ("auto", "cubemap", "map", "volume")
 #: Filters of the map-based techniques.
 FILTERS = ("hard", "pcf", "random", "pcss")
 #: Ways to fill a depth cube.
@@ -21,6 +21,12 @@ CUBE_PASSES = ("single", "six")
 PCF_TAPS = (4, 16, 36, 64)
 #: Smallest and largest ``samples`` of the random and PCSS filters (a multiple of 8).
 SAMPLES_RANGE = (8, 256)
+#: How shadow volumes are counted: decided per frame, or forced.
+ZMODES = ("auto", "zpass", "zfail")
+#: Where shadow volumes are extruded: a geometry shader, or numpy.
+EXTRUDE = ("gpu", "cpu")
+#: What an open caster of a shadow-volume light does.
+ON_OPEN = ("fallback", "raise")
 #: Smallest and largest shadow-map resolution (texels per side of a face).
 RESOLUTION_RANGE = (64, 4096)
 
@@ -33,7 +39,8 @@ class ShadowSettings:
     ----------
     technique : str
         ``"auto"`` (the planner chooses), ``"cubemap"`` (point and spot
-        lights) or ``"map"`` (spot and directional lights).
+        lights), ``"map"`` (spot and directional lights) or ``"volume"``
+        (stencil shadow volumes, every kind of light).
     resolution : int
         Texels per side of each shadow-map face, 64 to 4096.
     filter : str
@@ -61,6 +68,18 @@ class ShadowSettings:
     normal_offset : float
         Lookup point moved along the surface normal by this many texels,
         times the sine of the angle of incidence.
+    zmode : str
+        ``"volume"``: ``"auto"`` (z-pass when the camera is outside every
+        shadow volume, z-fail otherwise, decided each frame), ``"zpass"`` or
+        ``"zfail"`` to force one.
+    extrude : str
+        ``"volume"``: ``"gpu"`` (a geometry shader extrudes the silhouette)
+        or ``"cpu"`` (numpy builds the volumes when the light or a caster
+        moves).
+    on_open : str
+        ``"volume"``: what a caster that is not closed does, ``"fallback"``
+        (it casts from a shadow map instead, with a warning) or ``"raise"``
+        (a ``ValueError`` naming it).
 
     Notes
     -----
@@ -82,6 +101,9 @@ class ShadowSettings:
     bias: float = 0.5
     slope_bias: float = 0.5
     normal_offset: float = 0.75
+    zmode: str = "auto"
+    extrude: str = "gpu"
+    on_open: str = "fallback"
 
 
 def _choice(name: str, value: object, allowed: tuple) -> object:
@@ -149,6 +171,9 @@ _CHECKS = {
     "bias": lambda v: _texels("bias", v),
     "slope_bias": lambda v: _texels("slope_bias", v),
     "normal_offset": lambda v: _texels("normal_offset", v),
+    "zmode": lambda v: _choice("zmode", v, ZMODES),
+    "extrude": lambda v: _choice("extrude", v, EXTRUDE),
+    "on_open": lambda v: _choice("on_open", v, ON_OPEN),
 }
 
 

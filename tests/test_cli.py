@@ -30,6 +30,9 @@ def test_info_reports_the_context_and_the_techniques():
         "stencil bits",
         "cubemap (passes='single') available",
         "cubemap (passes='six')    available",
+        "volume (extrude='gpu')    available",
+        "volume (extrude='cpu')    available",
+        "map (spot, directional)   available",
     ):
         assert words in out
 
@@ -48,16 +51,24 @@ def test_bench_writes_table_and_frontier(tmp_path):
     out = pvshadows(
         "bench", "--out", str(tmp_path), "--quick", "--frames", "3", "--size", "320x240"
     )
-    assert "[2/2]" in out
+    assert "[4/4]" in out
     rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
     assert [r["setting"] for r in rows] == [
         "resolution=256 filter=hard passes=single",
         "resolution=256 filter=pcf passes=single",
+        "extrude=gpu zmode=zpass",
+        "resolution=256 filter=hard",
     ]
     for row in rows:
         assert 0 <= float(row["misclassified"]) < 0.05
         assert float(row["ratio_moving"]) > 0.5
-    assert (tmp_path / "bench.md").read_text().count("| cubemap |") == 2
+    assert float(rows[2]["misclassified"]) < 0.003
+    table = (tmp_path / "bench.md").read_text()
+    assert table.count("| cubemap |") == 2
+    assert table.count("| volume |") == 1
+    assert table.count("| map | spot |") == 1
+    assert "silhouette + volume, point light" in table
+    assert "Shadow volumes built on the CPU" in out
     assert (tmp_path / "frontier.png").stat().st_size > 10_000
 
 

@@ -2,6 +2,9 @@
 
 from pvshadows.techniques.cubemap import CubemapTechnique
 from pvshadows.techniques.maps import MapTechnique
+from pvshadows.techniques.volume import VolumeTechnique
 
 #: The class that runs each technique, by name.
-TECHNIQUE_CLASSES = {technique.name: technique for technique in (CubemapTechnique, MapTechnique)}
+TECHNIQUE_CLASSES = {
+    technique.name: technique for technique in (CubemapTechnique, MapTechnique, VolumeTechnique)
+}

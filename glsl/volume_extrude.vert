@@ -1,0 +1,15 @@
+//VTK::System::Dec
+// Shadow volumes extruded on the GPU (extrude="gpu"), vertex stage: hands the
+// model-space position and the vertex's index to the geometry shader, which
+// needs the index to test each face from the same corner in every invocation.
+
+in vec3 position;
+out vec3 modelPosition;
+flat out int vertexIndex;
+
+void main()
+{
+  modelPosition = position;
+  vertexIndex = gl_VertexID;
+  gl_Position = vec4(position, 1.0);
+}

@@ -1,0 +1,9 @@
+//VTK::System::Dec
+// Shadow volumes, mask pass: one triangle that covers the whole viewport,
+// made from gl_VertexID alone (no vertex buffer).
+
+void main()
+{
+  vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+  gl_Position = vec4(2.0 * corner - 1.0, 0.0, 1.0);
+}

@@ -1,0 +1,365 @@
+"""The shadow-volume passes: depth pre-pass, stencil counting, mask, and the debug overlay.
+
+Each pass enters GL state through ``vtkOpenGLState`` (``Push``/``Pop``
+restore the framebuffer bindings, viewport, program, stencil, depth, blend
+and colour-mask state VTK tracks) and switches depth clamping, which VTK
+does not track, back off before leaving.
+
+Counting, per light: the mask is cleared to 1 (lit); then for every batch of
+at most 255 bodies the stencil is cleared, the batch's volumes are drawn
+with ``INCR_WRAP``/``DECR_WRAP`` (z-pass: on depth pass, front faces up and
+back faces down; z-fail: on depth fail, back faces up and front faces down)
+with depth clamping, so nothing is clipped at the far plane, and a
+full-screen triangle writes 0 into the mask wherever the count is not zero.
+The batches are thus AND-ed into the mask, and an 8-bit count only has to
+hold one batch.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+
+import numpy as np
+import vtk
+
+from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
+from pvshadows.gl.programs import (
+    GLSL_VERSION,
+    ShaderCompileError,
+    compile_program,
+    glsl_source,
+    with_defines,
+)
+from pvshadows.gl.timing import PassTimer
+from pvshadows.gl.volume_buffers import EmptyArray, IndexedBuffers
+from pvshadows.report import PassReport
+from pvshadows.transforms import column_major
+
+#: Clip-space depth offset (times w) of light caps: they lie on the lit
+#: surface they came from and must lose the depth test against it. About
+#: eight steps of a 24-bit depth buffer.
+CAP_DEPTH_OFFSET = 1.0e-6
+
+
+@dataclass
+class VolumeDraw:
+    """One caster's volume (or part of it) as the stencil pass draws it.
+
+    Attributes
+    ----------
+    buffers : IndexedBuffers
+        Positions and indices on the GPU.
+    extrude : {"gpu", "cpu"}
+        ``"gpu"``: ``GL_TRIANGLES_ADJACENCY`` through the extruding geometry
+        shader; ``"cpu"``: ready-made homogeneous triangles.
+    model_to_clip : numpy.ndarray
+        ``(4, 4)`` float64 from the buffers' frame to clip space.
+    light_model : numpy.ndarray
+        ``(4,)`` the light in the buffers' frame (used by ``"gpu"``).
+    mirrored : bool
+        The model matrix flips handedness: front and back swap on screen.
+    pieces : list of tuple
+        ``(first, count, part)`` index ranges to draw, ``part`` one of
+        ``"all"`` (``"gpu"``: the shader emits what the counting needs),
+        ``"sides"``, ``"light"`` (light cap) or ``"dark"`` (dark cap).
+    extrude_to : float
+        ``0``: extruded to infinity (``w = 0``); above 0, ``"gpu"`` only:
+        extruded that far (model units) from the caster, for parallel
+        projections (``"cpu"`` volumes are built finite instead).
+    """
+
+    buffers: IndexedBuffers
+    extrude: str
+    model_to_clip: np.ndarray
+    light_model: np.ndarray
+    mirrored: bool
+    pieces: list[tuple[int, int, str]] = field(default_factory=list)
+    extrude_to: float = 0.0
+
+
+@dataclass
+class DepthDraw:
+    """One actor in the depth pre-pass: its triangles and its model-to-clip matrix."""
+
+    buffers: TriangleBuffers
+    model_to_clip: np.ndarray
+
+
+class VolumePasses:
+    """Runs the shadow-volume passes of one window.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context runs them.
+    """
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._window = window
+        self._gl = opengl_for(window)
+        self._programs: dict[str, vtk.vtkShaderProgram] = {}
+        self._empty: EmptyArray | None = None
+        self.precise = True
+
+    # -- programs ---------------------------------------------------------------------------
+
+    def _program(self, name: str) -> vtk.vtkShaderProgram:
+        if name in self._programs:
+            return self._programs[name]
+        fragment = with_defines(glsl_source("volume_colour.frag"))
+        if name == "gpu":
+            program = self._extrusion_program()
+        else:
+            vertex = {
+                "depth": "volume_depth.vert",
+                "cpu": "volume_homogeneous.vert",
+                "fullscreen": "volume_fullscreen.vert",
+            }[name]
+            program = compile_program(self._window, with_defines(glsl_source(vertex)), fragment)
+        self._programs[name] = program
+        return program
+
+    def _extrusion_program(self) -> vtk.vtkShaderProgram:
+        stages = ("volume_extrude.vert", "volume_colour.frag", "volume_extrude.geom")
+        try:
+            sources = [
+                with_defines(glsl_source(s), {"PVS_PRECISE": "precise"}).replace(
+                    GLSL_VERSION, "#version 400", 1
+                )
+                for s in stages
+            ]
+            return compile_program(self._window, *sources)
+        except ShaderCompileError:
+            # GLSL 4.00 missing: without `precise` the two faces of an edge may,
+            # in rare near-grazing cases, disagree on their facing.
+            self.precise = False
+            sources = [with_defines(glsl_source(s), {"PVS_PRECISE": ""}) for s in stages]
+            return compile_program(self._window, *sources)
+
+    def can_extrude_on_gpu(self) -> bool:
+        """Return whether the extruding geometry shader compiles in this context.
+
+        Returns
+        -------
+        bool
+            ``False`` when the driver refuses it (the technique then extrudes
+            on the CPU).
+        """
+        try:
+            self._program("gpu")
+        except ShaderCompileError:
+            return False
+        return True
+
+    def _bind(self, name: str) -> vtk.vtkShaderProgram:
+        program = self._program(name)
+        self._window.GetShaderCache().ReadyShaderProgram(program)
+        return program
+
+    def _empty_array(self) -> EmptyArray:
+        if self._empty is None:
+            self._empty = EmptyArray(self._window)
+        return self._empty
+
+    # -- state ------------------------------------------------------------------------------
+
+    @contextmanager
+    def _state(self) -> Iterator:
+        gl = self._gl
+        state = self._window.GetState()
+        state.Push()
+        try:
+            state.vtkglDisable(gl.GL_BLEND)
+            state.vtkglDisable(gl.GL_SCISSOR_TEST)
+            state.vtkglDisable(gl.GL_CULL_FACE)
+            state.vtkglDisable(gl.GL_STENCIL_TEST)
+            yield gl, state
+        finally:
+            gl.glDisable(gl.GL_DEPTH_CLAMP)
+            state.Pop()
+
+    # -- passes -----------------------------------------------------------------------------
+
+    def depth(self, target: VolumeTarget, draws: list[DepthDraw], timer: PassTimer) -> PassReport:
+        """Fill the target's depth with every visible actor (and clear its stencil).
+
+        Parameters
+        ----------
+        target : VolumeTarget
+            The framebuffer.
+        draws : list of DepthDraw
+            The visible actors.
+        timer : PassTimer
+            Records the pass's GPU time.
+
+        Returns
+        -------
+        PassReport
+            The pass.
+        """
+        record = PassReport("volume depth pre-pass", "run", f"{len(draws)} actors")
+        with self._state() as (gl, state), timer.measure(record):
+            target.bind(None)
+            state.vtkglEnable(gl.GL_DEPTH_TEST)
+            state.vtkglDepthFunc(gl.GL_LESS)
+            state.vtkglDepthMask(True)
+            state.vtkglColorMask(False, False, False, False)
+            state.vtkglClearDepth(1.0)
+            state.vtkglStencilMask(0xFF)
+            gl.glClearStencil(0)
+            state.vtkglClear(gl.GL_DEPTH_BUFFER_BIT | gl.GL_STENCIL_BUFFER_BIT)
+            program = self._bind("depth")
+            for draw in draws:
+                program.SetUniformMatrix4x4v("modelToClip", 1, column_major(draw.model_to_clip))
+                draw.buffers.draw(program)
+        return record
+
+    def fill(self, target: VolumeTarget, mask: MaskTexture, value: float) -> None:
+        """Set the whole mask to ``value`` (1 lit, 0 in shadow).
+
+        Parameters
+        ----------
+        target : VolumeTarget
+            The framebuffer.
+        mask : MaskTexture
+            The light's mask.
+        value : float
+            What to write.
+        """
+        with self._state() as (gl, state):
+            target.bind(mask)
+            state.vtkglColorMask(True, True, True, True)
+            state.vtkglClearColor(value, value, value, 1.0)
+            state.vtkglClear(gl.GL_COLOR_BUFFER_BIT)
+
+    def count(
+        self,
+        target: VolumeTarget,
+        mask: MaskTexture,
+        batches: list[list[VolumeDraw]],
+        zmode: str,
+    ) -> None:
+        """Count the volumes in the stencil, batch by batch, and leave the mask.
+
+        Parameters
+        ----------
+        target : VolumeTarget
+            The framebuffer, its depth filled by :meth:`depth`.
+        mask : MaskTexture
+            The light's mask, written: 1 lit, 0 in shadow.
+        batches : list of list of VolumeDraw
+            Volumes counted together (at most 255 bodies per batch).
+        zmode : {"zpass", "zfail"}
+            Counting in front of the surface or behind it.
+        """
+        with self._state() as (gl, state):
+            target.bind(mask)
+            state.vtkglColorMask(True, True, True, True)
+            state.vtkglClearColor(1.0, 1.0, 1.0, 1.0)
+            state.vtkglClear(gl.GL_COLOR_BUFFER_BIT)
+            state.vtkglEnable(gl.GL_STENCIL_TEST)
+            for batch in batches:
+                state.vtkglStencilMask(0xFF)
+                gl.glClearStencil(0)
+                state.vtkglClear(gl.GL_STENCIL_BUFFER_BIT)
+                self._count_batch(gl, state, batch, zmode)
+                # Mask: 0 wherever the batch left a non-zero count.
+                gl.glDisable(gl.GL_DEPTH_CLAMP)
+                state.vtkglDisable(gl.GL_DEPTH_TEST)
+                state.vtkglColorMask(True, True, True, True)
+                state.vtkglStencilFunc(gl.GL_NOTEQUAL, 0, 0xFF)
+                state.vtkglStencilOp(gl.GL_KEEP, gl.GL_KEEP, gl.GL_KEEP)
+                program = self._bind("fullscreen")
+                program.SetUniform4f("colour", [0.0, 0.0, 0.0, 0.0])
+                self._empty_array().draw_triangle()
+
+    def _count_batch(self, gl, state, batch: list[VolumeDraw], zmode: str) -> None:
+        state.vtkglEnable(gl.GL_DEPTH_TEST)
+        state.vtkglDepthFunc(gl.GL_LESS)
+        state.vtkglDepthMask(False)
+        state.vtkglColorMask(False, False, False, False)
+        state.vtkglStencilFunc(gl.GL_ALWAYS, 0, 0xFF)
+        gl.glEnable(gl.GL_DEPTH_CLAMP)
+        if zmode == "zpass":
+            up = (gl.GL_KEEP, gl.GL_KEEP, gl.GL_INCR_WRAP)
+            down = (gl.GL_KEEP, gl.GL_KEEP, gl.GL_DECR_WRAP)
+        else:
+            up = (gl.GL_KEEP, gl.GL_INCR_WRAP, gl.GL_KEEP)
+            down = (gl.GL_KEEP, gl.GL_DECR_WRAP, gl.GL_KEEP)
+        front, back = (up, down) if zmode == "zpass" else (down, up)
+        for mirrored in (False, True):
+            draws = [d for d in batch if d.mirrored == mirrored]
+            if not draws:
+                continue
+            first, second = (back, front) if mirrored else (front, back)
+            state.vtkglStencilOpSeparate(gl.GL_FRONT, *first)
+            state.vtkglStencilOpSeparate(gl.GL_BACK, *second)
+            for draw in draws:
+                self._draw_volume(draw, caps=zmode == "zfail")
+
+    def _draw_volume(self, draw: VolumeDraw, caps: bool) -> None:
+        gl = self._gl
+        program = self._bind(draw.extrude)
+        program.SetUniformMatrix4x4v("modelToClip", 1, column_major(draw.model_to_clip))
+        if draw.extrude == "gpu":
+            program.SetUniform4f("lightModel", np.asarray(draw.light_model, np.float32).tolist())
+            program.SetUniformi("caps", int(caps))
+            program.SetUniformf("capDepthOffset", CAP_DEPTH_OFFSET)
+            program.SetUniformf("extrudeTo", float(draw.extrude_to))
+            for first, count, _ in draw.pieces:
+                draw.buffers.draw(program, gl.GL_TRIANGLES_ADJACENCY, first, count)
+        else:
+            for first, count, part in draw.pieces:
+                if part != "sides" and not caps:
+                    continue
+                program.SetUniformf("capDepthOffset", CAP_DEPTH_OFFSET if part == "light" else 0.0)
+                draw.buffers.draw(program, gl.GL_TRIANGLES, first, count)
+
+    def overlay(
+        self,
+        draws: list[VolumeDraw],
+        viewport: tuple[int, int, int, int],
+        colour: tuple[float, float, float, float],
+    ) -> None:
+        """Draw the volumes' sides translucent into the bound framebuffer (VTK's frame).
+
+        The caps are left out: the light cap lies on the caster's lit surface
+        and the dark cap at infinity, so they show nothing of the volume.
+
+        Parameters
+        ----------
+        draws : list of VolumeDraw
+            The volumes.
+        viewport : tuple of int
+            The renderer's ``x, y, width, height`` in the window.
+        colour : tuple of float
+            RGBA; alpha sets the translucency.
+        """
+        with self._state() as (gl, state):
+            state.vtkglViewport(*viewport)
+            state.vtkglEnable(gl.GL_DEPTH_TEST)
+            state.vtkglDepthFunc(gl.GL_LEQUAL)
+            state.vtkglDepthMask(False)
+            state.vtkglColorMask(True, True, True, True)
+            state.vtkglEnable(gl.GL_BLEND)
+            state.vtkglBlendFuncSeparate(
+                gl.GL_SRC_ALPHA, gl.GL_ONE_MINUS_SRC_ALPHA, gl.GL_ZERO, gl.GL_ONE
+            )
+            gl.glEnable(gl.GL_DEPTH_CLAMP)
+            for draw in draws:
+                program = self._bind(draw.extrude)
+                program.SetUniform4f("colour", list(colour))
+                self._draw_volume(draw, caps=False)
+
+    def release(self) -> None:
+        """Release the programs and the empty vertex array."""
+        for program in self._programs.values():
+            program.ReleaseGraphicsResources(self._window)
+        self._programs.clear()
+        if self._empty is not None:
+            self._empty.release()
+            self._empty = None

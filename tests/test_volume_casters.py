@@ -1,0 +1,99 @@
+"""Casters made ready for shadow volumes, and the z-pass/z-fail decision, on the CPU."""
+
+import numpy as np
+import pytest
+import pyvista as pv
+
+from pvshadows.closed import OpenMeshError, edge_defects
+from pvshadows.silhouette import volume_geometry
+from pvshadows.volume_casters import batches, prepare_volume_mesh, winding_number
+from pvshadows.volume_zmode import hull_touches_box, light_region
+
+
+def faces(mesh):
+    mesh = mesh.triangulate()
+    return mesh.points, mesh.regular_faces
+
+
+def signed_crossings(mesh, light, point):
+    """Winding number of the volume's closed surface around ``point``, by its solid angle."""
+    volume = volume_geometry(mesh.points, mesh.triangles, mesh.adjacency, light)
+    positions = volume.positions.astype(np.float64)
+    # Put the points at infinity far away: 1e6 times the scene size is enough here.
+    finite = positions[:, 3:] != 0
+    coords = np.where(finite, positions[:, :3], positions[:, :3] * 1e6)
+    triangles = np.concatenate([volume.sides, volume.light_cap, volume.dark_cap])
+    return winding_number(coords, triangles, np.asarray(point, float))
+
+
+def test_a_flat_sheet_becomes_a_closed_two_sided_slab():
+    points, triangles = faces(pv.Plane(i_resolution=4, j_resolution=3))
+    triangles[::2] = triangles[::2, ::-1]  # winding need not agree on a sheet
+    mesh = prepare_volume_mesh(points, triangles, "ground")
+    assert mesh.how == "two-sided sheet"
+    assert edge_defects(mesh.triangles).is_closed
+    assert mesh.n_bodies == 1
+    light = [0.1, 0.2, 2.0, 1.0]
+    # A point under the sheet is inside the volume exactly once; above it, outside.
+    assert round(signed_crossings(mesh, light, (0.05, 0.05, -1.0))) == 1
+    assert round(signed_crossings(mesh, light, (0.05, 0.05, 1.0))) == 0
+    assert round(signed_crossings(mesh, [0.1, 0.2, -2.0, 1.0], (0.05, 0.05, 1.0))) == 1
+
+
+def test_open_meshes_that_are_not_flat_sheets_raise():
+    bowl = pv.Sphere().clip(normal="z")
+    with pytest.raises(OpenMeshError, match=r"'bowl' cannot be made closed: .*boundary edges"):
+        prepare_volume_mesh(*faces(bowl), "bowl")
+    pinched = pv.merge([pv.Plane(center=(0.5, 0.5, 0)), pv.Plane(center=(-0.5, -0.5, 0))])
+    with pytest.raises(OpenMeshError):  # two squares touching at one corner
+        prepare_volume_mesh(*faces(pinched.clean()), "pinched")
+    with pytest.raises(OpenMeshError, match="no triangles"):
+        prepare_volume_mesh(np.zeros((2, 3)), np.zeros((0, 3), int), "lines")
+
+
+def test_bodies_sorted_and_batched():
+    spheres = pv.merge([pv.Sphere(center=(3 * k, 0, 0), radius=1) for k in range(5)])
+    mesh = prepare_volume_mesh(*faces(spheres), "spheres")
+    assert mesh.n_bodies == 5
+    body_of_triangle = mesh.point_body[mesh.triangles[:, 0]]
+    assert np.all(np.diff(body_of_triangle) >= 0)
+    assert np.all(mesh.point_body[mesh.triangles] == body_of_triangle[:, None])
+    assert mesh.adjacency_rows.shape == (len(mesh.triangles), 6)
+    assert batches([300, 1, 254], limit=255) == [
+        [(0, 0, 255)],
+        [(0, 255, 300), (1, 0, 1), (2, 0, 209)],
+        [(2, 209, 254)],
+    ]
+    assert all(sum(e - s for _, s, e in b) <= 255 for b in batches([200] * 7))
+
+
+def test_winding_number_tells_inside_from_outside():
+    points, triangles = faces(pv.Cylinder(resolution=24))
+    mesh = prepare_volume_mesh(points, triangles, "cylinder")
+    assert winding_number(mesh.points, mesh.triangles, np.zeros(3)) == pytest.approx(1.0)
+    assert winding_number(mesh.points, mesh.triangles, np.array([0, 3.0, 0])) == pytest.approx(0.0)
+
+
+def test_hull_box_test_agrees_with_sampling():
+    rng = np.random.default_rng(5)
+    box = np.array([[-1.0, -1, -1], [1, 1, 1]])
+    for _ in range(200):
+        points = rng.uniform(-3, 3, (5, 3))
+        touches = hull_touches_box(points, box)
+        # Random convex combinations inside the box prove contact.
+        weights = rng.dirichlet(np.ones(5), 4000)
+        inside = np.all(np.abs(weights @ points) <= 1.0, axis=1).any()
+        if inside:
+            assert touches
+        if not touches:
+            assert not inside
+
+
+def test_directional_light_region_reaches_past_the_box():
+    region = np.array([[0.0, 0, 5], [0.1, 0, 5], [0, 0.1, 5]])
+    box = np.array([[-1.0, -1, 0], [1, 1, 1]])
+    # Light from below the box's far side: the sweep towards it crosses the box.
+    swept = light_region(np.array([0, 0, -1.0, 0]), region, box)
+    assert hull_touches_box(swept, box)
+    swept = light_region(np.array([0, 0, 1.0, 0]), region, box)
+    assert not hull_touches_box(swept, box)
