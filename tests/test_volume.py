@@ -430,3 +430,20 @@ def test_resizing_the_window_resizes_the_masks():
     draw(pl)
     assert pl.shadows._renderers[0].technique("volume").mask_of(scene.light).size == (400, 260)
     assert pl.shadows.measure(scene.light).misclassified <= EXACT
+
+
+def test_airplane_under_a_sun_falls_back_to_a_fitted_map():
+    pl = pv.Plotter(off_screen=True, window_size=[480, 360], lighting="none")
+    pl.add_mesh(pv.Plane(center=(900, 700, -300), i_size=5000, j_size=5000), name="ground")
+    pl.add_mesh(examples.load_airplane(), color="tan", name="airplane")
+    sun = pv.Light(position=(2900, -300, 2700), focal_point=(900, 700, -300))
+    pl.add_light(sun)
+    pl.camera_position = [(2700, -1500, 2000), (900, 700, -100), (0, 0, 1)]
+    with pytest.warns(UserWarning, match="actor 'airplane' is not a closed surface") as caught:
+        enable(pl)
+    assert "map shadow map instead" in str(caught[0].message)
+    report = volume_light_report(pl)
+    assert any(p.name.startswith("fallback map depth") for p in report.passes)
+    error = pl.shadows.measure(sun)
+    assert error.misclassified <= 0.01
+    assert np.nansum(pl.shadows.visibility(sun) < 0.5) > 3_000  # the airplane's shadow
