@@ -17,7 +17,7 @@ from pvshadows.probe import read_visibility
 from pvshadows.reference import SceneMesh, ViewSpec, trace_reference
 from pvshadows.report import FrameReport
 from pvshadows.scene import vtk_id, world_points
-from pvshadows.settings import ShadowSettings, validated
+from pvshadows.settings import ShadowSettings, preset, validated
 from pvshadows.snapshot import SceneReader
 
 
@@ -67,6 +67,7 @@ class ShadowsComponent:
         self,
         technique: str = "auto",
         *,
+        quality: str = "balanced",
         lights: Iterable[vtk.vtkLight] | None = None,
         **settings: object,
     ) -> None:
@@ -79,6 +80,12 @@ class ShadowsComponent:
             point lights), or name one technique for all lights
             (``"volume"``: stencil shadow volumes, pixel-exact hard shadows
             from every kind of light).
+        quality : {"draft", "balanced", "exact"}, default: "balanced"
+            A point on the accuracy-cost frontier that ``pvshadows bench``
+            measures: ``"draft"`` (512-texel maps, hard edges), ``"balanced"``
+            (1024-texel maps, filtered edges) or ``"exact"`` (pixel-exact
+            shadow volumes; shadow maps of 2048 texels for open casters).
+            Settings given explicitly win over the preset's.
         lights : iterable of pyvista.Light, optional
             Only these lights cast shadows. By default every light does.
         **settings
@@ -102,7 +109,7 @@ class ShadowsComponent:
         >>> pl.shadows.enabled
         True
         """
-        defaults = validated(ShadowSettings(), technique=technique, **settings)
+        defaults = validated(preset(quality), technique=technique, **settings)
         chosen = None
         if lights is not None:
             chosen = {vtk_id(self._check_light(light, "lights")) for light in lights}
@@ -167,6 +174,12 @@ class ShadowsComponent:
         """
         self._check_light(light, "light")
         current = self._per_light.get(vtk_id(light), self._defaults)
+        if "quality" in settings:
+            current = (
+                preset(str(settings["quality"]))
+                if isinstance(settings["quality"], str)
+                else current
+            )
         updated = validated(current, **settings)
         kind = light_kind(light)
         if updated.technique != "auto" and kind not in SERVES[updated.technique]:

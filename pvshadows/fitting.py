@@ -81,45 +81,6 @@ def spot_fit(pose: LightPose, resolution: int, near: float, far: float) -> SpotF
     return SpotFit(rotation, projection, float(2.0 * half / resolution))
 
 
-def box_in_spot(box: np.ndarray, pose: LightPose) -> bool:
-    """Return whether a world box may touch a spot light's cone (conservative).
-
-    Parameters
-    ----------
-    box : numpy.ndarray
-        ``(2, 3)`` world bounds.
-    pose : LightPose
-        The spot light.
-
-    Returns
-    -------
-    bool
-        ``False`` only when the box is certainly outside the cone.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from pvshadows.fitting import box_in_spot
-    >>> from pvshadows.lights import LightKind, LightPose
-    >>> pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 10.0)
-    >>> box_in_spot(np.array([[-0.1, -0.1, -2], [0.1, 0.1, -1]]), pose)
-    True
-    >>> box_in_spot(np.array([[3, 3, -2], [4, 4, -1]]), pose)
-    False
-    """
-    lo, hi = box - pose.position
-    if np.all(lo <= 0.0) and np.all(hi >= 0.0):
-        return True
-    center = 0.5 * (lo + hi)
-    radius = 0.5 * float(np.linalg.norm(hi - lo))
-    along = float(center @ pose.direction)
-    across = float(np.linalg.norm(center - along * pose.direction))
-    angle = np.radians(min(pose.cone_angle, 89.9))
-    # Distance from the sphere around the box to the cone's surface.
-    outside = across * np.cos(angle) - along * np.sin(angle)
-    return bool(outside <= radius)
-
-
 @dataclass(frozen=True)
 class SunFit:
     """A directional light's orthographic map.
@@ -136,8 +97,6 @@ class SunFit:
         Depth range covered, from the near plane.
     resolution : int
         Texels per side.
-    casters : tuple of int
-        Indices of the casters to draw.
     """
 
     rotation: np.ndarray
@@ -145,7 +104,6 @@ class SunFit:
     half_width: float
     depth: float
     resolution: int
-    casters: tuple[int, ...]
 
     @property
     def texel(self) -> float:
@@ -159,6 +117,59 @@ class SunFit:
     def key(self) -> tuple:
         """Return a value that changes whenever the map's coverage changes."""
         return (self.rotation.tobytes(), self.origin.tobytes(), self.half_width, self.depth)
+
+    def _near_center(self) -> np.ndarray:
+        return self.rotation[:3, :3] @ self.origin
+
+    def covers(self, needed: SunFit) -> bool:
+        """Return whether this map can stand in for ``needed`` without drawing it again.
+
+        It can when both look along the same light, this map's coverage holds
+        the needed one in all three directions, and its texels are at most
+        twice as large: the camera can move and the map stays (no re-render,
+        no shimmering) until the view needs much finer or other coverage.
+
+        Parameters
+        ----------
+        needed : SunFit
+            The fit this frame asks for.
+
+        Returns
+        -------
+        bool
+            Whether to keep this map.
+        """
+        if self.resolution != needed.resolution or not np.array_equal(
+            self.rotation, needed.rotation
+        ):
+            return False
+        mine, theirs = self._near_center(), needed._near_center()
+        across = np.all(np.abs(theirs[:2] - mine[:2]) + needed.half_width <= self.half_width)
+        along = mine[2] <= theirs[2] and theirs[2] + needed.depth <= mine[2] + self.depth
+        return bool(across and along and self.half_width <= 2.0 * needed.half_width)
+
+    def casters_in(self, actors: list[ActorState]) -> list[ActorState]:
+        """Return the casters whose bounds overlap this map's coverage across the light.
+
+        Parameters
+        ----------
+        actors : list of ActorState
+            The renderer's actors.
+
+        Returns
+        -------
+        list of ActorState
+            The casters to draw into the map.
+        """
+        casters = [a for a in actors if a.caster]
+        if not casters:
+            return []
+        boxes = _light_boxes(self.rotation, np.array([a.bounds for a in casters]))
+        center = self._near_center()[:2]
+        inside = np.all(boxes[:, 1, :2] >= center - self.half_width, axis=1) & np.all(
+            boxes[:, 0, :2] <= center + self.half_width, axis=1
+        )
+        return [caster for caster, keep in zip(casters, inside, strict=True) if keep]
 
 
 def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
@@ -268,7 +279,7 @@ def sun_fit(
         ``None`` when no caster can shadow a visible receiver.
     """
     rotation = sun_rotation(pose)
-    casters = [(i, a) for i, a in enumerate(actors) if a.caster]
+    casters = [a for a in actors if a.caster]
     receivers = [a for a in actors if a.receiver]
     if not casters or not receivers:
         return None
@@ -282,18 +293,18 @@ def sun_fit(
     if not visible.any():
         return None
     region_lo, region_hi = lo[visible].min(axis=0), hi[visible].max(axis=0)
-    caster_boxes = _light_boxes(rotation, np.array([a.bounds for _, a in casters]))
+    caster_boxes = _light_boxes(rotation, np.array([a.bounds for a in casters]))
     relevant = []
-    for (index, state), box in zip(casters, caster_boxes, strict=True):
+    for state, box in zip(casters, caster_boxes, strict=True):
         if np.any(box[1, :2] < region_lo) or np.any(box[0, :2] > region_hi):
             continue
         others = np.array([r.bounds for r in receivers if r is not state])
         if _flat_and_lit_above(state, pose.direction, others):
             continue
-        relevant.append((index, box))
+        relevant.append(box)
     if not relevant:
         return None
-    boxes = np.array([box for _, box in relevant])
+    boxes = np.array(relevant)
     fit_lo = np.maximum(boxes[:, 0, :2].min(axis=0), region_lo)
     fit_hi = np.minimum(boxes[:, 1, :2].max(axis=0), region_hi)
     size = float(max(np.max(fit_hi - fit_lo), 1e-30))
@@ -306,12 +317,4 @@ def sun_fit(
     near = np.floor(near / step) * step - step
     far = np.ceil(far / step) * step + step
     origin = rotation[:3, :3].T @ np.array([center[0], center[1], near])
-    drawn = tuple(
-        index
-        for (index, _), box in zip(casters, caster_boxes, strict=True)
-        if not (
-            np.any(box[1, :2] < center - texel * resolution / 2)
-            or np.any(box[0, :2] > center + texel * resolution / 2)
-        )
-    )
-    return SunFit(rotation, origin, texel * resolution / 2.0, far - near, resolution, drawn)
+    return SunFit(rotation, origin, texel * resolution / 2.0, far - near, resolution)

@@ -1,8 +1,13 @@
 """Decides, each frame, what every light does: the only place such decisions are made.
 
-A light casts only when it is on, has intensity, and there is a caster and a
-receiver; its technique follows its kind and settings. Which faces and which
-maps are reused is decided by the technique from what this plan hands it.
+A light casts only when it is on, has intensity, and some caster and some
+receiver the camera sees are in its reach (a spot light's cone; everything
+for point and directional lights). Its casters are those in its reach. Its
+technique follows its kind, its settings and the quality asked for: with
+``technique="auto"``, a cube map for a point light, a 2D map for spot and
+directional lights, and shadow volumes for ``quality="exact"``. What each
+technique then reuses (maps whose light and casters did not change, cube
+faces without casters) it reports in the same frame's words.
 """
 
 from __future__ import annotations
@@ -10,8 +15,10 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+import numpy as np
 import vtk
 
+from pvshadows.culling import box_in_frustum, box_in_spot, frustum_planes
 from pvshadows.lights import LightKind, LightPose, casts_light, light_kind, light_pose
 from pvshadows.settings import ShadowSettings
 from pvshadows.snapshot import ActorState, Snapshot
@@ -65,10 +72,15 @@ class LightPlan:
 
 def _technique_for(kind: LightKind, settings: ShadowSettings) -> tuple[str | None, str]:
     if settings.technique == "auto":
-        technique = AUTO_TECHNIQUE.get(kind)
-        if technique is None:
-            return None, f"no technique of this version serves a {kind.value} light yet"
-        return technique, f"auto chose {technique} for a {kind.value} light"
+        if settings.quality == "exact":
+            return "volume", (
+                f"auto chose volume for a {kind.value} light: quality='exact' asks for "
+                "pixel-exact hard shadows"
+            )
+        technique = AUTO_TECHNIQUE[kind]
+        return technique, (
+            f"auto chose {technique} for a {kind.value} light (quality={settings.quality!r})"
+        )
     if kind not in SERVES[settings.technique]:
         return None, f"technique {settings.technique!r} cannot serve a {kind.value} light"
     return settings.technique, f"{settings.technique} as configured"
@@ -101,7 +113,8 @@ def plan_frame(
     lights = renderer.GetLights()
     lights.InitTraversal()
     casters = snapshot.casters
-    receivers = snapshot.receivers
+    planes = frustum_planes(renderer.GetActiveCamera(), renderer.GetTiledAspectRatio())
+    seen = [r for r in snapshot.receivers if box_in_frustum(r.bounds, planes)]
     for index in range(lights.GetNumberOfItems()):
         light = lights.GetNextItem()
         plan = LightPlan(light, index, vtk_index, light_kind(light), settings_for(light))
@@ -121,21 +134,37 @@ def plan_frame(
                 "a headlight's shadows hide behind the objects that cast them: none drawn"
             )
             continue
-        technique, why = _technique_for(plan.kind, plan.settings)
-        plan.notes.append(why)
-        if technique is None:
-            continue
-        if not receivers:
-            plan.notes.append("no actor receives shadows")
-            continue
-        if not casters:
-            plan.notes.append("no actor casts shadows")
-            continue
         try:
-            plan.pose = light_pose(light)
+            pose = light_pose(light)
         except ValueError as error:
             plan.notes.append(f"casts nothing: {error}")
             continue
-        plan.casters = casters
-        plan.technique = technique
+        technique, why = _technique_for(plan.kind, plan.settings)
+        if technique is None:
+            plan.notes.append(why)
+            continue
+        reach = _reach(pose)
+        reached = [r for r in seen if reach(r.bounds)]
+        if not reached:
+            plan.notes.append(
+                "no receiver the camera sees is in the light's reach: it casts nothing and "
+                "costs nothing"
+                if seen
+                else "the camera sees no receiver: the light casts nothing and costs nothing"
+            )
+            continue
+        within = [c for c in casters if reach(c.bounds)]
+        if not within:
+            plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
+            continue
+        plan.notes.append(why)
+        if pose.kind is LightKind.SPOT:
+            plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
+        plan.pose, plan.casters, plan.technique = pose, within, technique
     return plans
+
+
+def _reach(pose: LightPose) -> Callable[[np.ndarray], bool]:
+    if pose.kind is LightKind.SPOT:
+        return lambda box: box_in_spot(box, pose)
+    return lambda box: True

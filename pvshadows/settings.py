@@ -27,6 +27,14 @@ ZMODES = ("auto", "zpass", "zfail")
 EXTRUDE = ("gpu", "cpu")
 #: What an open caster of a shadow-volume light does.
 ON_OPEN = ("fallback", "raise")
+#: Points on the accuracy-cost frontier that ``enable(quality=...)`` picks.
+QUALITIES = ("draft", "balanced", "exact")
+#: What each quality sets, before the user's own settings.
+QUALITY_PRESETS = {
+    "draft": {"resolution": 512, "filter": "hard"},
+    "balanced": {"resolution": 1024, "filter": "pcf", "pcf_taps": 16},
+    "exact": {"resolution": 2048, "filter": "hard"},
+}
 #: Smallest and largest shadow-map resolution (texels per side of a face).
 RESOLUTION_RANGE = (64, 4096)
 
@@ -41,6 +49,10 @@ class ShadowSettings:
         ``"auto"`` (the planner chooses), ``"cubemap"`` (point and spot
         lights), ``"map"`` (spot and directional lights) or ``"volume"``
         (stencil shadow volumes, every kind of light).
+    quality : str
+        What ``technique="auto"`` aims for: ``"draft"`` (cheapest maps,
+        hard edges), ``"balanced"`` (maps with filtered edges) or
+        ``"exact"`` (pixel-exact shadow volumes). See :data:`QUALITY_PRESETS`.
     resolution : int
         Texels per side of each shadow-map face, 64 to 4096.
     filter : str
@@ -91,6 +103,7 @@ class ShadowSettings:
     """
 
     technique: str = "auto"
+    quality: str = "balanced"
     resolution: int = 1024
     filter: str = "pcf"
     pcf_taps: int = 16
@@ -161,6 +174,7 @@ def _texels(name: str, value: object) -> float:
 
 _CHECKS = {
     "technique": lambda v: _choice("technique", v, TECHNIQUES),
+    "quality": lambda v: _choice("quality", v, QUALITIES),
     "resolution": _resolution,
     "filter": lambda v: _choice("filter", v, FILTERS),
     "pcf_taps": lambda v: _choice("pcf_taps", v, PCF_TAPS),
@@ -175,6 +189,34 @@ _CHECKS = {
     "extrude": lambda v: _choice("extrude", v, EXTRUDE),
     "on_open": lambda v: _choice("on_open", v, ON_OPEN),
 }
+
+
+def preset(quality: str) -> ShadowSettings:
+    """Return the settings a quality preset stands for.
+
+    Parameters
+    ----------
+    quality : {"draft", "balanced", "exact"}
+        The preset.
+
+    Returns
+    -------
+    ShadowSettings
+        Default settings with the preset's values.
+
+    Raises
+    ------
+    ValueError
+        For an unknown quality.
+
+    Examples
+    --------
+    >>> from pvshadows.settings import preset
+    >>> preset("draft").resolution, preset("draft").filter
+    (512, 'hard')
+    """
+    _choice("quality", quality, QUALITIES)
+    return replace(ShadowSettings(), quality=quality, **QUALITY_PRESETS[quality])
 
 
 def validated(base: ShadowSettings, **changes: object) -> ShadowSettings:

@@ -159,7 +159,7 @@ def faces_touching_box(box: np.ndarray) -> int:
     for face, (forward, _) in enumerate(CUBE_FACE_AXES):
         axis = int(np.argmax(np.abs(forward)))
         sign = forward[axis]
-        inside = True
+        inside = max(sign * box[0, axis], sign * box[1, axis]) >= 0.0
         for other in range(3):
             if other == axis:
                 continue

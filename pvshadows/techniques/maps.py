@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import vtk
 
-from pvshadows.fitting import SunFit, box_in_spot, spot_fit, sun_fit, sun_rotation
+from pvshadows.fitting import SunFit, spot_fit, sun_fit, sun_rotation
 from pvshadows.gl.textures import DepthMap
 from pvshadows.lights import LightKind
 from pvshadows.passes.map_depth import MapCaster, MapDepthPass
@@ -36,6 +36,7 @@ class MapState:
     key: tuple | None = None
     frame: int = -1
     drawn: bool = False
+    fit: SunFit | None = None
     world_to_light: np.ndarray | None = None
     light_to_clip: np.ndarray | None = None
     params: tuple = ()
@@ -96,8 +97,8 @@ class MapTechnique:
         self, plan: LightPlan, context: FrameContext, state: MapState
     ) -> list[PassReport]:
         pose, settings = plan.pose, plan.settings
-        inside = [c for c in plan.casters if box_in_spot(c.bounds, pose)]
-        nearest, far = distance_range(pose.position, inside or plan.casters)
+        inside = plan.casters
+        nearest, far = distance_range(pose.position, inside or context.snapshot.casters)
         fit = spot_fit(pose, settings.resolution, far * 1e-4, far)
         state.world_to_light = translation(-pose.position)
         state.light_to_clip = fit.light_to_clip
@@ -107,7 +108,7 @@ class MapTechnique:
             state.key = None
             return [PassReport("map depth", "skipped", "no caster inside the spot's cone")]
         key = (pose.key(), settings.resolution, tuple(c.key() for c in inside))
-        detail = f"{len(inside)} of {len(plan.casters)} casters inside the cone"
+        detail = f"{len(inside)} of {len(context.snapshot.casters)} casters inside the cone"
         return self._render(state, key, inside, context, far, along_z=False, detail=detail)
 
     def _update_sun(
@@ -128,7 +129,10 @@ class MapTechnique:
             state.world_to_light = sun_rotation(pose)
             state.params = (1.0, 1.0, 1.0, 0.0)
             return [PassReport("map depth", "skipped", "no caster can shadow a visible receiver")]
-        drawn = [actors[i] for i in fit.casters]
+        if state.fit is not None and state.fit.covers(fit):
+            fit = state.fit
+        state.fit = fit
+        drawn = fit.casters_in(actors)
         state.world_to_light = fit.world_to_light()
         state.light_to_clip = np.diag([1.0 / fit.half_width, 1.0 / fit.half_width, 0.0, 1.0])
         tangent = np.tan(np.radians(settings.light_size))
