@@ -27,7 +27,14 @@ import numpy as np
 from pvshadows.builtin import builtin_visibility
 from pvshadows.gl.binding import opengl_for
 from pvshadows.measure import compare
-from pvshadows.scenes import StandardScene, standard_scene
+from pvshadows.scenes import (
+    StandardScene,
+    crowd_scene,
+    eight_spots_scene,
+    standard_scene,
+    three_lights_scene,
+)
+from pvshadows.settings import QUALITIES
 
 
 @dataclass(frozen=True)
@@ -175,6 +182,27 @@ def filter_cases(technique: str, light: str, resolutions: Iterable[int]) -> list
     ]
 
 
+def preset_cases() -> list[BenchCase]:
+    """Return the quality presets of ``enable(quality=...)`` for each kind of light.
+
+    Returns
+    -------
+    list of BenchCase
+        ``technique="auto"`` with each quality, for point, spot and directional lights.
+
+    Examples
+    --------
+    >>> from pvshadows.bench import preset_cases
+    >>> preset_cases()[0].label
+    'auto (point) quality=draft'
+    """
+    return [
+        BenchCase("auto", {"quality": quality}, light)
+        for light in ("point", "spot", "directional")
+        for quality in QUALITIES
+    ]
+
+
 def all_cases() -> list[BenchCase]:
     """Return the published bench: every technique and setting, and VTK's own shadows.
 
@@ -201,7 +229,7 @@ def all_cases() -> list[BenchCase]:
     cases.append(BenchCase("vtk", {}, "spot"))
     cases += filter_cases("map", "directional", [1024, 2048])
     cases += volume_cases(zmodes=("auto",), light="directional")
-    return cases
+    return cases + preset_cases()
 
 
 def volume_cases(
@@ -320,11 +348,7 @@ def append_silhouette_table(timings: list[dict], out: Path) -> str:
         f"| {1e3 * t['prepare_s']:.0f} |"
         for t in timings
     ]
-    section = "\n".join(lines) + "\n"
-    out.mkdir(parents=True, exist_ok=True)
-    with open(out / "bench.md", "a", encoding="utf-8") as handle:
-        handle.write(section)
-    return section
+    return _append(out, lines)
 
 
 class PairedClock:
@@ -511,6 +535,130 @@ def write_table(rows: list[BenchRow], out: Path, extra: str = "") -> None:
         for r in rows
     ]
     (out / "bench.md").write_text("\n".join(lines) + "\n" + extra, encoding="utf-8")
+
+
+def append_presets_table(rows: list[BenchRow], out: Path) -> str:
+    """Append the quality presets' rows to ``out/bench.md`` as their own table.
+
+    Parameters
+    ----------
+    rows : list of BenchRow
+        The measurements (rows of technique ``"auto"`` are the presets).
+    out : pathlib.Path
+        Folder holding ``bench.md``.
+
+    Returns
+    -------
+    str
+        The section written, to print.
+    """
+    lines = [
+        "",
+        "Quality presets (`pl.shadows.enable(quality=...)`), each a point on the frontier:",
+        "",
+        "| light | quality | misclassified | time ratio (light moving) | time ratio (static) |",
+        "| --- | --- | ---: | ---: | ---: |",
+    ]
+    lines += [
+        f"| {r.light} | {r.setting.removeprefix('quality=')} | {100 * r.misclassified:.3f} % "
+        f"| {r.ratio_moving:.2f} | {r.ratio_static:.2f} |"
+        for r in rows
+        if r.technique == "auto"
+    ]
+    return _append(out, lines)
+
+
+def _append(out: Path, lines: list[str]) -> str:
+    section = "\n".join(lines) + "\n"
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / "bench.md", "a", encoding="utf-8") as handle:
+        handle.write(section)
+    return section
+
+
+def planner_counts(window_size: tuple[int, int] = (400, 300)) -> list[dict]:
+    """Count the passes the planner runs in three scenes, against drawing every light's map.
+
+    Parameters
+    ----------
+    window_size : tuple of int, default: (400, 300)
+        Window size of the scenes.
+
+    Returns
+    -------
+    list of dict
+        ``scene``, ``passes`` run and ``every_light`` (what drawing every
+        light's map every frame would run), and for the crowd the casters drawn.
+    """
+    import pvshadows  # noqa: F401 - registers pl.shadows
+
+    counts = []
+    plotter, _ = eight_spots_scene(window_size)
+    plotter.shadows.enable(filter="hard")
+    plotter.screenshot(return_img=True)
+    counts.append(
+        {
+            "scene": "8 spot lights, 6 of them reach no visible receiver (1 frame)",
+            "passes": plotter.shadows.last_frame.passes_run,
+            "every_light": 8,
+        }
+    )
+    plotter.close()
+    plotter, lights = three_lights_scene(window_size)
+    plotter.shadows.enable(filter="hard")
+    plotter.screenshot(return_img=True)
+    moved = 0
+    for _ in range(3):
+        plotter.camera.azimuth = 30
+        plotter.render()
+        moved += plotter.shadows.last_frame.passes_run
+    counts.append(
+        {
+            "scene": "point, spot and sun, static scene seen from 3 new cameras (3 frames)",
+            "passes": moved,
+            "every_light": 3 * len(lights),
+        }
+    )
+    plotter.close()
+    plotter, _, centres = crowd_scene(200, window_size)
+    plotter.shadows.enable(filter="hard")
+    plotter.screenshot(return_img=True)
+    drawn = int(plotter.shadows.last_frame.lights[0].passes[0].detail.split()[0])
+    counts.append(
+        {
+            "scene": "spot of 20 degrees over 200 spheres spread wide: casters drawn",
+            "passes": drawn,
+            "every_light": len(centres) + 1,
+        }
+    )
+    plotter.close()
+    return counts
+
+
+def append_planner_table(counts: list[dict], out: Path) -> str:
+    """Append the planner's pass counts to ``out/bench.md``.
+
+    Parameters
+    ----------
+    counts : list of dict
+        From :func:`planner_counts`.
+    out : pathlib.Path
+        Folder holding ``bench.md``.
+
+    Returns
+    -------
+    str
+        The section written, to print.
+    """
+    lines = [
+        "",
+        "Only what the scene calls for (passes counted, not timed):",
+        "",
+        "| scene | run | if every light drew its map |",
+        "| --- | ---: | ---: |",
+    ]
+    lines += [f"| {c['scene']} | {c['passes']} | {c['every_light']} |" for c in counts]
+    return _append(out, lines)
 
 
 def _short(setting: str) -> str:

@@ -47,9 +47,13 @@ def _bench(args: argparse.Namespace) -> int:
     from pvshadows.bench import (
         BenchCase,
         all_cases,
+        append_planner_table,
+        append_presets_table,
         append_silhouette_table,
         cubemap_cases,
+        planner_counts,
         plot_frontier,
+        preset_cases,
         run_bench,
         silhouette_timings,
         volume_cases,
@@ -62,12 +66,15 @@ def _bench(args: argparse.Namespace) -> int:
         cases = cubemap_cases(resolutions=(256,), passes=("single",))
         cases += volume_cases(extrudes=("gpu",), zmodes=("zpass",))
         cases.append(BenchCase("map", {"resolution": 256, "filter": "hard"}, "spot"))
+        cases += [c for c in preset_cases() if c.light == "point"][:1]
         sizes = (20_000,)
     rows = run_bench(cases, frames=args.frames, window_size=args.size)
     out = Path(args.out)
     write_table(rows, out)
     plot_frontier(rows, out / "frontier.png")
+    print(append_presets_table(rows, out))
     print(append_silhouette_table(silhouette_timings(sizes, repeats=1 if args.quick else 3), out))
+    print(append_planner_table(planner_counts(), out))
     print(f"wrote {out / 'bench.csv'}, {out / 'bench.md'} and {out / 'frontier.png'}")
     return 0
 

@@ -193,3 +193,133 @@ def standard_scene(
         tuple(up),
     ]
     return StandardScene(plotter, light_object, ground, box, sphere, cylinder, scale, offset)
+
+
+def spot_light(position, focal_point, cone_angle=30.0, intensity=0.3) -> pv.Light:
+    """Return a scene spot light.
+
+    Parameters
+    ----------
+    position, focal_point : sequence of float
+        Where it is and where it points.
+    cone_angle : float, default: 30.0
+        Half angle of its cone in degrees.
+    intensity : float, default: 0.3
+        Its intensity.
+
+    Returns
+    -------
+    pyvista.Light
+        The light.
+
+    Examples
+    --------
+    >>> from pvshadows.scenes import spot_light
+    >>> spot_light((0, 0, 5), (0, 0, 0)).cone_angle
+    30.0
+    """
+    return pv.Light(
+        position=tuple(position),
+        focal_point=tuple(focal_point),
+        positional=True,
+        cone_angle=cone_angle,
+        intensity=intensity,
+        light_type="scene light",
+    )
+
+
+def eight_spots_scene(window_size: tuple[int, int] = (400, 300)) -> tuple[pv.Plotter, list]:
+    """Return the standard scene lit by eight spots, of which six reach no visible receiver.
+
+    Two spots aim at the scene; three aim at the sky and three at ground far
+    outside the view. The standard scene's point light is off.
+
+    Parameters
+    ----------
+    window_size : tuple of int, default: (400, 300)
+        Window size.
+
+    Returns
+    -------
+    tuple
+        The plotter and the eight spots (the two that reach the scene first).
+
+    Examples
+    --------
+    >>> from pvshadows.scenes import eight_spots_scene
+    >>> len(eight_spots_scene((160, 120))[1])
+    8
+    """
+    scene = standard_scene(window_size=window_size)
+    scene.light.SetSwitch(False)
+    spots = [spot_light((3, -3, 5), (0, 0, 0)), spot_light((-3, 3, 5), (0, 0, 0))]
+    spots += [spot_light((0, 0, 5), (0, 0, 50)) for _ in range(3)]
+    spots += [spot_light((60, 60, 5), (60, 60, 0)) for _ in range(3)]
+    for light in spots:
+        scene.plotter.add_light(light)
+    return scene.plotter, spots
+
+
+def three_lights_scene(window_size: tuple[int, int] = (400, 300)) -> tuple[pv.Plotter, list]:
+    """Return the standard scene lit by its point light, a spot and a sun.
+
+    Parameters
+    ----------
+    window_size : tuple of int, default: (400, 300)
+        Window size.
+
+    Returns
+    -------
+    tuple
+        The plotter and its three lights (point, spot, directional).
+
+    Examples
+    --------
+    >>> from pvshadows.scenes import three_lights_scene
+    >>> [light.positional for light in three_lights_scene((160, 120))[1]]
+    [True, True, False]
+    """
+    scene = standard_scene(window_size=window_size)
+    scene.light.intensity = 0.4
+    spot = spot_light((-3, 3, 5), (0, 0, 0), cone_angle=50, intensity=0.4)
+    sun = pv.Light(position=(5, 3, 8), focal_point=(0, 0, 0), intensity=0.4)
+    scene.plotter.add_light(spot)
+    scene.plotter.add_light(sun)
+    return scene.plotter, [scene.light, spot, sun]
+
+
+def crowd_scene(
+    count: int = 200, window_size: tuple[int, int] = (400, 300)
+) -> tuple[pv.Plotter, pv.Light, np.ndarray]:
+    """Return small spheres spread over a wide ground, under one narrow spot light.
+
+    Parameters
+    ----------
+    count : int, default: 200
+        Number of spheres, spread over 110 x 110 units.
+    window_size : tuple of int, default: (400, 300)
+        Window size.
+
+    Returns
+    -------
+    tuple
+        The plotter, the spot (20 units up, cone of 20 degrees) and the
+        spheres' centres ``(count, 2)``.
+
+    Examples
+    --------
+    >>> from pvshadows.scenes import crowd_scene
+    >>> crowd_scene(5, (160, 120))[2].shape
+    (5, 2)
+    """
+    plotter = pv.Plotter(off_screen=True, window_size=list(window_size), lighting="none")
+    plotter.add_mesh(pv.Plane(i_size=120, j_size=120), color="white")
+    centres = np.random.default_rng(3).uniform(-55, 55, (count, 2))
+    for x, y in centres:
+        plotter.add_mesh(
+            pv.Sphere(radius=0.6, center=(x, y, 0.6), theta_resolution=12, phi_resolution=12)
+        )
+    light = spot_light((0, 0, 20), (0, 0, 0), cone_angle=20, intensity=1.0)
+    plotter.add_light(light)
+    plotter.camera_position = [(0, -40, 45), (0, 0, 0), (0, 0, 1)]
+    return plotter, light, centres

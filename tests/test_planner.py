@@ -3,25 +3,19 @@
 import numpy as np
 import pytest
 import pyvista as pv
+
 from conftest import draw, point_light
-
-from pvshadows.scenes import standard_scene
-
-
-def spot(position, focal, cone=30.0, intensity=0.3):
-    return pv.Light(position=position, focal_point=focal, positional=True, cone_angle=cone,
-                    intensity=intensity)
+from pvshadows.scenes import (
+    crowd_scene,
+    eight_spots_scene,
+    spot_light,
+    standard_scene,
+    three_lights_scene,
+)
 
 
 def test_eight_lights_of_which_six_reach_no_visible_receiver_run_the_passes_of_two():
-    scene = standard_scene(window_size=(400, 300))
-    pl = scene.plotter
-    scene.light.SetSwitch(False)
-    lights = [spot((3, -3, 5), (0, 0, 0)), spot((-3, 3, 5), (0, 0, 0))]
-    lights += [spot((0, 0, 5), (0, 0, 50)) for _ in range(3)]  # aimed at the sky
-    lights += [spot((60, 60, 5), (60, 60, 0)) for _ in range(3)]  # far outside the view
-    for light in lights:
-        pl.add_light(light)
+    pl, lights = eight_spots_scene()
     pl.shadows.enable(filter="hard")
     draw(pl)
     frame = pl.shadows.last_frame
@@ -30,19 +24,15 @@ def test_eight_lights_of_which_six_reach_no_visible_receiver_run_the_passes_of_t
     assert len(casting) == 2
     idle = [r for r in frame.lights[1:] if r.technique is None]
     assert len(idle) == 6
-    assert all("no receiver the camera sees is in the light's reach" in " ".join(r.notes)
-               for r in idle)
+    assert all(
+        "no receiver the camera sees is in the light's reach" in " ".join(r.notes) for r in idle
+    )
     for light in lights[:2]:
         assert pl.shadows.measure(light).misclassified <= 0.01
 
 
 def test_static_scene_from_a_new_camera_runs_no_depth_pass():
-    scene = standard_scene(window_size=(400, 300))
-    pl = scene.plotter
-    scene.light.intensity = 0.4
-    pl.add_light(spot((-3, 3, 5), (0, 0, 0), cone=50, intensity=0.4))
-    sun = pv.Light(position=(5, 3, 8), focal_point=(0, 0, 0), intensity=0.4)
-    pl.add_light(sun)
+    pl, lights = three_lights_scene()
     pl.shadows.enable(filter="hard")
     draw(pl)
     assert pl.shadows.last_frame.passes_run == 3
@@ -53,19 +43,12 @@ def test_static_scene_from_a_new_camera_runs_no_depth_pass():
         frame = pl.shadows.last_frame
         assert frame.passes_run == 0
         assert all(p.status == "reused" for r in frame.lights for p in r.passes)
-    assert pl.shadows.measure(sun).misclassified <= 0.01
+    for light in lights:
+        assert pl.shadows.measure(light).misclassified <= 0.01
 
 
 def test_spot_over_two_hundred_actors_draws_only_those_in_its_cone():
-    pl = pv.Plotter(off_screen=True, window_size=[400, 300], lighting="none")
-    pl.add_mesh(pv.Plane(i_size=120, j_size=120), color="white")
-    centres = np.random.default_rng(3).uniform(-55, 55, (200, 2))
-    for x, y in centres:
-        pl.add_mesh(pv.Sphere(radius=0.6, center=(x, y, 0.6), theta_resolution=12,
-                              phi_resolution=12))
-    light = spot((0, 0, 20), (0, 0, 0), cone=20, intensity=1.0)
-    pl.add_light(light)
-    pl.camera_position = [(0, -40, 45), (0, 0, 0), (0, 0, 1)]
+    pl, light, centres = crowd_scene()
     pl.shadows.enable(filter="hard")
     draw(pl)
     report = pl.shadows.last_frame.lights[0]
@@ -108,7 +91,7 @@ def test_a_light_with_no_caster_in_reach_costs_nothing():
     pl = pv.Plotter(off_screen=True, window_size=[300, 200], lighting="none")
     pl.add_mesh(pv.Plane(i_size=10, j_size=10))
     pl.add_mesh(pv.Sphere(center=(4, 4, 1)))
-    light = spot((-3, -3, 4), (-3, -3, 0), cone=10, intensity=1.0)
+    light = spot_light((-3, -3, 4), (-3, -3, 0), cone_angle=10, intensity=1.0)
     pl.add_light(light)
     pl.shadows.enable()
     draw(pl)
