@@ -1,4 +1,8 @@
-"""Vertex and index buffers holding a caster's triangles for the depth passes."""
+"""Vertex and index buffers on the GPU, drawn by pvshadows' own passes.
+
+Casters' triangles for the depth passes, shadow volumes' vertices and
+adjacency indices, and an attribute-less array for full-screen passes.
+"""
 
 from __future__ import annotations
 
@@ -10,7 +14,83 @@ import vtk
 from pvshadows.gl.binding import opengl_for
 
 
-class TriangleBuffers:
+class IndexedBuffers:
+    """Vertices (float32, 3 or 4 components) and one uint32 index buffer on the GPU.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context owns the buffers.
+    vertices : numpy.ndarray
+        ``(n, k)`` positions, ``k`` 3 or 4, already in a local frame.
+    indices : numpy.ndarray
+        Flat indices into ``vertices``.
+    """
+
+    def __init__(
+        self, window: vtk.vtkOpenGLRenderWindow, vertices: np.ndarray, indices: np.ndarray
+    ) -> None:
+        self._gl = gl = opengl_for(window)
+        data = np.ascontiguousarray(vertices, dtype=np.float32)
+        index = np.ascontiguousarray(indices, dtype=np.uint32).ravel()
+        self.components = int(data.shape[1])
+        self.n_indices = int(index.size)
+        self._vertices, self._indices = (int(b) for b in gl.glGenBuffers(2))
+        self._arrays: dict[int, int] = {}
+        gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._vertices)
+        gl.glBufferData(gl.GL_ARRAY_BUFFER, max(data.nbytes, 4), data, gl.GL_STATIC_DRAW)
+        gl.glBindBuffer(gl.GL_ARRAY_BUFFER, 0)
+        gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, self._indices)
+        gl.glBufferData(gl.GL_ELEMENT_ARRAY_BUFFER, max(index.nbytes, 4), index, gl.GL_STATIC_DRAW)
+        gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, 0)
+
+    def _array_for(self, location: int) -> int:
+        gl = self._gl
+        if location not in self._arrays:
+            array = int(gl.glGenVertexArrays(1))
+            gl.glBindVertexArray(array)
+            gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._vertices)
+            gl.glVertexAttribPointer(
+                location, self.components, gl.GL_FLOAT, gl.GL_FALSE, 0, ctypes.c_void_p(0)
+            )
+            gl.glEnableVertexAttribArray(location)
+            gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, self._indices)
+            gl.glBindVertexArray(0)
+            gl.glBindBuffer(gl.GL_ARRAY_BUFFER, 0)
+            self._arrays[location] = array
+        return self._arrays[location]
+
+    def draw(self, program: vtk.vtkShaderProgram, mode: int, first: int, count: int) -> None:
+        """Draw ``count`` indices from index ``first`` with a bound program reading ``position``.
+
+        Parameters
+        ----------
+        program : vtk.vtkShaderProgram
+            The bound program.
+        mode : int
+            GL primitive, e.g. ``GL_TRIANGLES`` or ``GL_TRIANGLES_ADJACENCY``.
+        first, count : int
+            Range of the index buffer to draw.
+        """
+        if count <= 0:
+            return
+        gl = self._gl
+        gl.glBindVertexArray(self._array_for(program.FindAttributeArray("position")))
+        gl.glDrawElements(mode, count, gl.GL_UNSIGNED_INT, ctypes.c_void_p(4 * first))
+        gl.glBindVertexArray(0)
+
+    def release(self) -> None:
+        """Delete the buffers and vertex arrays (the context must be current)."""
+        gl = self._gl
+        if self._arrays:
+            gl.glDeleteVertexArrays(len(self._arrays), list(self._arrays.values()))
+            self._arrays.clear()
+        if self._vertices:
+            gl.glDeleteBuffers(2, [self._vertices, self._indices])
+            self._vertices = self._indices = 0
+
+
+class TriangleBuffers(IndexedBuffers):
     """One caster's triangles on the GPU: positions (float32) and indices (uint32).
 
     Parameters
@@ -23,55 +103,39 @@ class TriangleBuffers:
         ``(m, 3)`` indices into ``points``.
     """
 
-    def __init__(
-        self, window: vtk.vtkOpenGLRenderWindow, points: np.ndarray, triangles: np.ndarray
-    ) -> None:
-        self._gl = gl = opengl_for(window)
-        self.n_indices = int(triangles.size)
-        self._vertices, self._indices = (int(b) for b in gl.glGenBuffers(2))
-        self._arrays: dict[int, int] = {}
-        positions = np.ascontiguousarray(points, dtype=np.float32)
-        indices = np.ascontiguousarray(triangles, dtype=np.uint32)
-        gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._vertices)
-        gl.glBufferData(gl.GL_ARRAY_BUFFER, positions.nbytes, positions, gl.GL_STATIC_DRAW)
-        gl.glBindBuffer(gl.GL_ARRAY_BUFFER, 0)
-        gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, self._indices)
-        gl.glBufferData(gl.GL_ELEMENT_ARRAY_BUFFER, indices.nbytes, indices, gl.GL_STATIC_DRAW)
-        gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, 0)
-
-    def _array_for(self, location: int) -> int:
-        gl = self._gl
-        if location not in self._arrays:
-            array = int(gl.glGenVertexArrays(1))
-            gl.glBindVertexArray(array)
-            gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._vertices)
-            gl.glVertexAttribPointer(location, 3, gl.GL_FLOAT, gl.GL_FALSE, 0, ctypes.c_void_p(0))
-            gl.glEnableVertexAttribArray(location)
-            gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, self._indices)
-            gl.glBindVertexArray(0)
-            gl.glBindBuffer(gl.GL_ARRAY_BUFFER, 0)
-            self._arrays[location] = array
-        return self._arrays[location]
-
-    def draw(self, program: vtk.vtkShaderProgram) -> None:
-        """Draw the triangles with a bound program that reads ``in vec3 position``.
+    def draw_triangles(self, program: vtk.vtkShaderProgram) -> None:
+        """Draw all the triangles with a bound program that reads ``in vec3 position``.
 
         Parameters
         ----------
         program : vtk.vtkShaderProgram
             The bound program.
         """
+        self.draw(program, self._gl.GL_TRIANGLES, 0, self.n_indices)
+
+
+class EmptyArray:
+    """A vertex array with no attributes, for full-screen passes that use ``gl_VertexID``.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context owns it.
+    """
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._gl = opengl_for(window)
+        self._array = int(self._gl.glGenVertexArrays(1))
+
+    def draw_triangle(self) -> None:
+        """Draw one triangle of three attribute-less vertices (a full-screen triangle)."""
         gl = self._gl
-        gl.glBindVertexArray(self._array_for(program.FindAttributeArray("position")))
-        gl.glDrawElements(gl.GL_TRIANGLES, self.n_indices, gl.GL_UNSIGNED_INT, ctypes.c_void_p(0))
+        gl.glBindVertexArray(self._array)
+        gl.glDrawArrays(gl.GL_TRIANGLES, 0, 3)
         gl.glBindVertexArray(0)
 
     def release(self) -> None:
-        """Delete the buffers and vertex arrays (the context must be current)."""
-        gl = self._gl
-        if self._arrays:
-            gl.glDeleteVertexArrays(len(self._arrays), list(self._arrays.values()))
-            self._arrays.clear()
-        if self._vertices:
-            gl.glDeleteBuffers(2, [self._vertices, self._indices])
-            self._vertices = self._indices = 0
+        """Delete the vertex array."""
+        if self._array:
+            self._gl.glDeleteVertexArrays(1, [self._array])
+            self._array = 0

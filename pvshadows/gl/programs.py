@@ -8,6 +8,7 @@ keeps VTK's idea of the bound program true.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -164,3 +165,42 @@ def bind_program(window: vtk.vtkOpenGLRenderWindow, program: vtk.vtkShaderProgra
         A program from :func:`compile_program`.
     """
     window.GetShaderCache().ReadyShaderProgram(program)
+
+
+class ProgramCache:
+    """Programs of one window, compiled once per key and released together.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context owns the programs.
+    """
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._window = window
+        self._programs: dict[object, vtk.vtkShaderProgram] = {}
+
+    def get(self, key: object, build: Callable[[], vtk.vtkShaderProgram]) -> vtk.vtkShaderProgram:
+        """Return the program for ``key``, calling ``build`` to compile it the first time.
+
+        Parameters
+        ----------
+        key : hashable
+            What distinguishes the program (stage files, defines).
+        build : callable
+            Compiles it (for example with :func:`compile_program`).
+
+        Returns
+        -------
+        vtk.vtkShaderProgram
+            The compiled program.
+        """
+        if key not in self._programs:
+            self._programs[key] = build()
+        return self._programs[key]
+
+    def release(self) -> None:
+        """Release every program."""
+        for program in self._programs.values():
+            program.ReleaseGraphicsResources(self._window)
+        self._programs.clear()

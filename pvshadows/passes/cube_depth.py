@@ -8,7 +8,7 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.buffers import TriangleBuffers
-from pvshadows.gl.programs import compile_program, glsl_source, with_defines
+from pvshadows.gl.programs import ProgramCache, compile_program, glsl_source, with_defines
 from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.timing import PassTimer
 from pvshadows.passes.gl_state import depth_only_state
@@ -72,26 +72,28 @@ class CubeDepthPass:
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
-        self._programs: dict[str, vtk.vtkShaderProgram] = {}
+        self._programs = ProgramCache(window)
 
     def _program(self, passes: str) -> vtk.vtkShaderProgram:
-        if passes not in self._programs:
-            fragment = with_defines(glsl_source("distance_depth.frag"))
-            if passes == "single":
-                program = compile_program(
+        fragment = with_defines(glsl_source("distance_depth.frag"))
+        if passes == "single":
+            return self._programs.get(
+                passes,
+                lambda: compile_program(
                     self._window,
                     with_defines(glsl_source("cube_depth.vert")),
                     fragment,
                     with_defines(glsl_source("cube_depth.geom")),
-                )
-            else:
-                program = compile_program(
-                    self._window,
-                    with_defines(glsl_source("cube_depth.vert"), {"SIX_PASSES": True}),
-                    fragment,
-                )
-            self._programs[passes] = program
-        return self._programs[passes]
+                ),
+            )
+        return self._programs.get(
+            passes,
+            lambda: compile_program(
+                self._window,
+                with_defines(glsl_source("cube_depth.vert"), {"SIX_PASSES": True}),
+                fragment,
+            ),
+        )
 
     def render(
         self,
@@ -146,7 +148,7 @@ class CubeDepthPass:
                         program.SetUniformMatrix4x4v(
                             "modelToLight", 1, column_major(caster.model_to_light)
                         )
-                        caster.buffers.draw(program)
+                        caster.buffers.draw_triangles(program)
             else:
                 for face in range(6):
                     drawn = [c for c in casters if c.face_mask & (1 << face)]
@@ -169,14 +171,12 @@ class CubeDepthPass:
                             program.SetUniformMatrix4x4v(
                                 "modelToLight", 1, column_major(caster.model_to_light)
                             )
-                            caster.buffers.draw(program)
+                            caster.buffers.draw_triangles(program)
         return records
 
     def release(self) -> None:
         """Release the compiled programs."""
-        for program in self._programs.values():
-            program.ReleaseGraphicsResources(self._window)
-        self._programs.clear()
+        self._programs.release()
 
 
 _FACE_NAMES = ("+X", "-X", "+Y", "-Y", "+Z", "-Z")

@@ -8,7 +8,7 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.buffers import TriangleBuffers
-from pvshadows.gl.programs import compile_program, glsl_source, with_defines
+from pvshadows.gl.programs import ProgramCache, compile_program, glsl_source, with_defines
 from pvshadows.gl.textures import DepthMap
 from pvshadows.gl.timing import PassTimer
 from pvshadows.passes.gl_state import depth_only_state
@@ -43,17 +43,18 @@ class MapDepthPass:
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
-        self._programs: dict[bool, vtk.vtkShaderProgram] = {}
+        self._programs = ProgramCache(window)
 
     def _program(self, along_z: bool) -> vtk.vtkShaderProgram:
-        if along_z not in self._programs:
-            defines = {"DEPTH_ALONG_Z": True} if along_z else {}
-            self._programs[along_z] = compile_program(
+        defines = {"DEPTH_ALONG_Z": True} if along_z else {}
+        return self._programs.get(
+            along_z,
+            lambda: compile_program(
                 self._window,
                 with_defines(glsl_source("map_depth.vert")),
                 with_defines(glsl_source("distance_depth.frag"), defines),
-            )
-        return self._programs[along_z]
+            ),
+        )
 
     def render(
         self,
@@ -100,11 +101,9 @@ class MapDepthPass:
             program.SetUniformMatrix4x4v("lightToClip", 1, column_major(light_to_clip))
             for caster in casters:
                 program.SetUniformMatrix4x4v("modelToLight", 1, column_major(caster.model_to_light))
-                caster.buffers.draw(program)
+                caster.buffers.draw_triangles(program)
         return [report]
 
     def release(self) -> None:
         """Release the compiled programs."""
-        for program in self._programs.values():
-            program.ReleaseGraphicsResources(self._window)
-        self._programs.clear()
+        self._programs.release()

@@ -25,17 +25,17 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.binding import opengl_for
-from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.gl.buffers import EmptyArray, IndexedBuffers, TriangleBuffers
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
 from pvshadows.gl.programs import (
     GLSL_VERSION,
+    ProgramCache,
     ShaderCompileError,
     compile_program,
     glsl_source,
     with_defines,
 )
 from pvshadows.gl.timing import PassTimer
-from pvshadows.gl.volume_buffers import EmptyArray, IndexedBuffers
 from pvshadows.report import PassReport
 from pvshadows.transforms import column_major
 
@@ -101,27 +101,28 @@ class VolumePasses:
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
         self._gl = opengl_for(window)
-        self._programs: dict[str, vtk.vtkShaderProgram] = {}
+        self._programs = ProgramCache(window)
         self._empty: EmptyArray | None = None
         self.precise = True
 
     # -- programs ---------------------------------------------------------------------------
 
     def _program(self, name: str) -> vtk.vtkShaderProgram:
-        if name in self._programs:
-            return self._programs[name]
-        fragment = with_defines(glsl_source("volume_colour.frag"))
         if name == "gpu":
-            program = self._extrusion_program()
-        else:
-            vertex = {
-                "depth": "volume_depth.vert",
-                "cpu": "volume_homogeneous.vert",
-                "fullscreen": "volume_fullscreen.vert",
-            }[name]
-            program = compile_program(self._window, with_defines(glsl_source(vertex)), fragment)
-        self._programs[name] = program
-        return program
+            return self._programs.get(name, self._extrusion_program)
+        vertex = {
+            "depth": "volume_depth.vert",
+            "cpu": "volume_homogeneous.vert",
+            "fullscreen": "volume_fullscreen.vert",
+        }[name]
+        return self._programs.get(
+            name,
+            lambda: compile_program(
+                self._window,
+                with_defines(glsl_source(vertex)),
+                with_defines(glsl_source("volume_colour.frag")),
+            ),
+        )
 
     def _extrusion_program(self) -> vtk.vtkShaderProgram:
         stages = ("volume_extrude.vert", "volume_colour.frag", "volume_extrude.geom")
@@ -215,7 +216,7 @@ class VolumePasses:
             program = self._bind("depth")
             for draw in draws:
                 program.SetUniformMatrix4x4v("modelToClip", 1, column_major(draw.model_to_clip))
-                draw.buffers.draw(program)
+                draw.buffers.draw_triangles(program)
         return record
 
     def fill(self, target: VolumeTarget, mask: MaskTexture, value: float) -> None:
@@ -357,9 +358,7 @@ class VolumePasses:
 
     def release(self) -> None:
         """Release the programs and the empty vertex array."""
-        for program in self._programs.values():
-            program.ReleaseGraphicsResources(self._window)
-        self._programs.clear()
+        self._programs.release()
         if self._empty is not None:
             self._empty.release()
             self._empty = None

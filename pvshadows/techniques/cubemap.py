@@ -15,7 +15,8 @@ from pvshadows.report import PassReport
 from pvshadows.scene import vtk_id
 from pvshadows.shading import LightShading
 from pvshadows.techniques.base import FrameContext
-from pvshadows.techniques.filtering import FilterBindings, lookup_shading
+from pvshadows.techniques.filtering import lookup_shading
+from pvshadows.techniques.per_light import PerLightMaps
 from pvshadows.transforms import translation, view_to_light
 
 
@@ -28,6 +29,10 @@ class CubeState:
     far: float = 1.0
     nearest: float = 0.0
     frame: int = -1
+
+    def release(self) -> None:
+        """Release the cube."""
+        self.cube.release()
 
 
 def distance_range(position: np.ndarray, casters: list) -> tuple[float, float]:
@@ -67,7 +72,7 @@ def distance_range(position: np.ndarray, casters: list) -> tuple[float, float]:
     return nearest, max(far * 1.01, np.finfo(np.float32).tiny * 1e6)
 
 
-class CubemapTechnique:
+class CubemapTechnique(PerLightMaps):
     """Keeps a depth cube per point light and renders it only when it changed.
 
     Parameters
@@ -79,10 +84,8 @@ class CubemapTechnique:
     name = "cubemap"
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
-        self._window = window
+        super().__init__(window)
         self._pass = CubeDepthPass(window)
-        self._filters = FilterBindings(window)
-        self._states: dict[str, CubeState] = {}
 
     def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
         """Bring the light's cube up to date for this frame.
@@ -103,7 +106,7 @@ class CubemapTechnique:
         state = self._states.get(vtk_id(plan.light))
         if state is None or state.cube.resolution != settings.resolution:
             if state is not None:
-                state.cube.release()
+                state.release()
             state = CubeState(DepthCube(self._window, settings.resolution))
             self._states[vtk_id(plan.light)] = state
         position = plan.pose.position
@@ -187,29 +190,7 @@ class CubemapTechnique:
         )
         return uniforms
 
-    def deactivate(self) -> None:
-        """Free the texture units bound by :meth:`activate`."""
-        self._filters.deactivate()
-
     def cube_of(self, light: vtk.vtkLight) -> DepthCube | None:
         """Return the cube kept for a light, if any (for tests and debugging)."""
         state = self._states.get(vtk_id(light))
         return state.cube if state else None
-
-    def keep_only(self, plans: list[LightPlan]) -> None:
-        """Release the cubes of lights that no longer use this technique.
-
-        Parameters
-        ----------
-        plans : list of LightPlan
-            This frame's plans.
-        """
-        alive = {vtk_id(p.light) for p in plans if p.technique == self.name}
-        for key in set(self._states) - alive:
-            self._states.pop(key).cube.release()
-
-    def release(self) -> None:
-        """Release every cube and program."""
-        self.keep_only([])
-        self._pass.release()
-        self._filters.release()

@@ -24,7 +24,8 @@ from pvshadows.scene import vtk_id
 from pvshadows.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
-from pvshadows.techniques.filtering import FilterBindings, lookup_shading
+from pvshadows.techniques.filtering import lookup_shading
+from pvshadows.techniques.per_light import PerLightMaps
 from pvshadows.transforms import translation, world_to_view
 
 
@@ -41,12 +42,16 @@ class MapState:
     light_to_clip: np.ndarray | None = None
     params: tuple = ()
 
+    def release(self) -> None:
+        """Release the map."""
+        self.depth.release()
+
 
 def _kind(plan: LightPlan) -> str:
     return "sun" if plan.pose.kind is LightKind.DIRECTIONAL else "spot"
 
 
-class MapTechnique:
+class MapTechnique(PerLightMaps):
     """Keeps a 2D depth map per spot or directional light.
 
     Parameters
@@ -58,17 +63,15 @@ class MapTechnique:
     name = "map"
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
-        self._window = window
+        super().__init__(window)
         self._pass = MapDepthPass(window)
-        self._filters = FilterBindings(window)
-        self._states: dict[str, MapState] = {}
 
     def _state(self, plan: LightPlan) -> MapState:
         key = vtk_id(plan.light)
         state = self._states.get(key)
         if state is None or state.depth.resolution != plan.settings.resolution:
             if state is not None:
-                state.depth.release()
+                state.release()
             state = MapState(DepthMap(self._window, plan.settings.resolution))
             self._states[key] = state
         return state
@@ -225,25 +228,3 @@ class MapTechnique:
             uniforms[f"pvsLightToClip{i}"] = state.light_to_clip
             uniforms[f"pvsCone{i}"] = (*plan.pose.direction, cone)
         return uniforms
-
-    def deactivate(self) -> None:
-        """Free the texture units bound by :meth:`activate`."""
-        self._filters.deactivate()
-
-    def keep_only(self, plans: list[LightPlan]) -> None:
-        """Release the maps of lights that no longer use this technique.
-
-        Parameters
-        ----------
-        plans : list of LightPlan
-            This frame's plans.
-        """
-        alive = {vtk_id(p.light) for p in plans if p.technique == self.name}
-        for key in set(self._states) - alive:
-            self._states.pop(key).depth.release()
-
-    def release(self) -> None:
-        """Release every map, program and filter texture."""
-        self.keep_only([])
-        self._pass.release()
-        self._filters.release()

@@ -44,8 +44,8 @@ import pyvista as pv
 import vtk
 
 from pvshadows.closed import OpenMeshError
+from pvshadows.gl.buffers import IndexedBuffers
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
-from pvshadows.gl.volume_buffers import IndexedBuffers
 from pvshadows.lights import LightKind
 from pvshadows.passes.volume_stencil import DepthDraw, VolumeDraw, VolumePasses
 from pvshadows.planner import LightPlan

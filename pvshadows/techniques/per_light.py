@@ -1,0 +1,69 @@
+"""What the shadow-map techniques share: one map per light, read through the filters."""
+
+from __future__ import annotations
+
+from typing import ClassVar, Protocol
+
+import vtk
+
+from pvshadows.planner import LightPlan
+from pvshadows.scene import vtk_id
+from pvshadows.techniques.filtering import FilterBindings
+
+
+class LightState(Protocol):
+    """What a technique keeps for one light between frames."""
+
+    def release(self) -> None:
+        """Release the light's GPU resources."""
+
+
+class Releasable(Protocol):
+    """A pass holding GPU resources."""
+
+    def release(self) -> None:
+        """Release them."""
+
+
+class PerLightMaps:
+    """Keeps one :class:`LightState` per light and the filters' textures.
+
+    Subclasses set ``name``, fill ``self._states`` keyed by
+    ``vtk_id(light)``, and set ``self._pass`` to the pass that draws their maps.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context owns the maps.
+    """
+
+    name: ClassVar[str]
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._window = window
+        self._filters = FilterBindings(window)
+        self._states: dict[str, LightState] = {}
+        self._pass: Releasable | None = None
+
+    def deactivate(self) -> None:
+        """Free the texture units bound by ``activate``."""
+        self._filters.deactivate()
+
+    def keep_only(self, plans: list[LightPlan]) -> None:
+        """Release the maps of lights that no longer use this technique.
+
+        Parameters
+        ----------
+        plans : list of LightPlan
+            This frame's plans.
+        """
+        alive = {vtk_id(p.light) for p in plans if p.technique == self.name}
+        for key in set(self._states) - alive:
+            self._states.pop(key).release()
+
+    def release(self) -> None:
+        """Release every map, the pass's programs and the filters' textures."""
+        self.keep_only([])
+        if self._pass is not None:
+            self._pass.release()
+        self._filters.release()
