@@ -51,6 +51,49 @@ float pvsPlaneDistance(PvsReceiver r, vec3 direction)
   return along < -1e-3 ? clamp(dot(r.q, r.n) / along, 0.5 * dist, 2.0 * dist) : dist;
 }
 
+// Receiver of a point or spot light in world axes centred on the light.
+// params.y: texel size per unit distance; cone: xyz axis, w cosine of the cone
+// (-2 where there is no cone). Outside the cone the light does not reach.
+PvsReceiver pvsPositionalReceiver(mat4 viewToLight, vec4 params, vec4 cone, vec3 bias,
+                                  vec3 posVC, vec3 normalVC)
+{
+  vec3 p = (viewToLight * vec4(posVC, 1.0)).xyz;
+  float dist = max(length(p), 1e-30);
+  PvsReceiver r = pvsReceiver(p, normalize(mat3(viewToLight) * normalVC), -p / dist,
+                              dist * params.y, bias);
+  if (dot(p / dist, cone.xyz) < cone.w)
+  {
+    r.lit = 0.0;
+  }
+  return r;
+}
+
+// Direction from a point light to a tap `offset` texels across the lookup
+// direction, and the receiver plane's distance along it.
+vec3 pvsTapDirection(PvsReceiver r, vec2 offset, out float planeDistance)
+{
+  vec3 u, v;
+  pvsAcross(normalize(r.q), u, v);
+  vec3 direction = normalize(r.q + (offset.x * u + offset.y * v) * r.texel);
+  planeDistance = pvsPlaneDistance(r, direction);
+  return direction;
+}
+
+// PCSS radii in texels for a spherical light of radius params.z whose nearest
+// caster is params.w away: the cone from the point to the light's disk, seen
+// from the light's centre (blocker search), and the penumbra it casts.
+float pvsSphereSearchRadius(vec4 params, PvsReceiver r)
+{
+  float d = length(r.q);
+  float nearest = clamp(params.w, 1e-3 * d, d);
+  return params.z * (d - nearest) / (nearest * r.texel);
+}
+
+float pvsSpherePenumbraRadius(vec4 params, PvsReceiver r, float blocker)
+{
+  return params.z * (length(r.q) - blocker) / (max(blocker, 1e-30) * r.texel);
+}
+
 // The i-th offset of the jittered disk (unit radius) for this pixel, from the
 // 3D offset texture: (x, y) = pixel modulo its size, z = sample pair. The first
 // eight offsets are the outer ring, one per sector, for the early exit.

@@ -15,23 +15,12 @@ struct PvsSpotMap
 
 PvsReceiver pvsSpotReceiver(PvsSpotMap map, mat4 viewToLight, vec3 bias, vec3 posVC, vec3 normalVC)
 {
-  vec3 p = (viewToLight * vec4(posVC, 1.0)).xyz;
-  float dist = max(length(p), 1e-30);
-  PvsReceiver r = pvsReceiver(p, normalize(mat3(viewToLight) * normalVC), -p / dist,
-                              dist * map.params.y, bias);
-  if (dot(p / dist, map.cone.xyz) < map.cone.w)
-  {
-    r.lit = 0.0;
-  }
-  return r;
+  return pvsPositionalReceiver(viewToLight, map.params, map.cone, bias, posVC, normalVC);
 }
 
 vec3 pvsSpotTap(PvsSpotMap map, PvsReceiver r, vec2 offset, out float planeDistance)
 {
-  vec3 u, v;
-  pvsAcross(normalize(r.q), u, v);
-  vec3 direction = normalize(r.q + (offset.x * u + offset.y * v) * r.texel);
-  planeDistance = pvsPlaneDistance(r, direction);
+  vec3 direction = pvsTapDirection(r, offset, planeDistance);
   vec4 clip = map.lightToClip * vec4(direction, 1.0);
   return vec3(clip.xy / clip.w * 0.5 + 0.5, clip.w);
 }
@@ -56,12 +45,10 @@ float pvsSpotBlocker(sampler2D raw, PvsSpotMap map, PvsReceiver r, vec2 offset, 
 
 float pvsSpotSearchRadius(PvsSpotMap map, PvsReceiver r)
 {
-  float d = length(r.q);
-  float nearest = clamp(map.params.w, 1e-3 * d, d);
-  return map.params.z * (d - nearest) / (nearest * r.texel);
+  return pvsSphereSearchRadius(map.params, r);
 }
 
 float pvsSpotPenumbraRadius(PvsSpotMap map, PvsReceiver r, float blocker)
 {
-  return map.params.z * (length(r.q) - blocker) / (max(blocker, 1e-30) * r.texel);
+  return pvsSpherePenumbraRadius(map.params, r, blocker);
 }
