@@ -90,9 +90,10 @@ class ShadowsComponent:
             Only these lights cast shadows. By default every light does.
         **settings
             Defaults for every light: ``resolution``, ``filter``,
-            ``pcf_taps``, ``passes``, ``bias``, ``slope_bias``,
-            ``normal_offset``, and for volumes ``zmode``, ``extrude``,
-            ``on_open`` (see :class:`pvshadows.settings.ShadowSettings`).
+            ``pcf_taps``, ``samples``, ``filter_radius``, ``light_size``,
+            ``passes``, ``bias``, ``slope_bias``, ``normal_offset``, and for
+            volumes ``zmode``, ``extrude``, ``on_open`` (see
+            :class:`pvshadows.settings.ShadowSettings`).
 
         Raises
         ------
@@ -155,8 +156,11 @@ class ShadowsComponent:
         light : pyvista.Light
             A light of this plotter.
         **settings
-            ``technique``, ``resolution``, ``filter``, ``pcf_taps``,
-            ``passes``, ``bias``, ``slope_bias``, ``normal_offset``.
+            Any field of :class:`pvshadows.settings.ShadowSettings`:
+            ``technique``, ``quality`` (starts from that preset), ``resolution``,
+            ``filter``, ``pcf_taps``, ``samples``, ``filter_radius``,
+            ``light_size``, ``passes``, ``bias``, ``slope_bias``,
+            ``normal_offset``, ``zmode``, ``extrude``, ``on_open``.
 
         Raises
         ------
@@ -174,12 +178,8 @@ class ShadowsComponent:
         """
         self._check_light(light, "light")
         current = self._per_light.get(vtk_id(light), self._defaults)
-        if "quality" in settings:
-            current = (
-                preset(str(settings["quality"]))
-                if isinstance(settings["quality"], str)
-                else current
-            )
+        if isinstance(settings.get("quality"), str):
+            current = preset(settings["quality"])
         updated = validated(current, **settings)
         kind = light_kind(light)
         if updated.technique != "auto" and kind not in SERVES[updated.technique]:
