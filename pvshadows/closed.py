@@ -538,3 +538,40 @@ def make_closed(points, triangles, name: str = "mesh") -> ClosedMesh:
     fixed.flags.writeable = False
     repaired = fixed_points is not welded_points or not np.array_equal(fixed, welded)
     return ClosedMesh(points=fixed_points, triangles=fixed, repaired=bool(repaired))
+
+
+def is_closed_outward(points, triangles) -> bool:
+    """Return whether a mesh, once welded, is closed and wound with its fronts outward.
+
+    Only such a mesh can have its front faces culled from a shadow map: every
+    ray from the light then meets one of its back faces behind the front.
+
+    Parameters
+    ----------
+    points : array_like
+        ``(n, 3)`` points.
+    triangles : array_like
+        ``(m, 3)`` point ids.
+
+    Returns
+    -------
+    bool
+        ``True`` for a closed, consistently and outward wound surface.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.closed import is_closed_outward
+    >>> sphere = pv.Sphere()
+    >>> is_closed_outward(sphere.points, sphere.regular_faces)
+    True
+    >>> plane = pv.Plane().triangulate()
+    >>> is_closed_outward(plane.points, plane.regular_faces)
+    False
+    """
+    welded_points, welded = weld(points, triangles)
+    if len(welded) == 0 or not edge_defects(welded).is_closed:
+        return False
+    corners = welded_points[welded] - welded_points.mean(axis=0)
+    six_volume = np.einsum("ij,ij->i", corners[:, 0], np.cross(corners[:, 1], corners[:, 2])).sum()
+    return bool(six_volume > 0.0)

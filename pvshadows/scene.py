@@ -14,6 +14,8 @@ import numpy as np
 import pyvista as pv
 import vtk
 
+from pvshadows.closed import is_closed_outward
+
 
 @dataclass
 class ActorTriangles:
@@ -36,11 +38,24 @@ class ActorTriangles:
     triangles: np.ndarray
     data_mtime: int
     version: int = field(default=0)
+    _closed_outward: bool | None = field(default=None, repr=False)
 
     @property
     def n_triangles(self) -> int:
         """Number of triangles."""
         return int(self.triangles.shape[0])
+
+    def closed_outward(self) -> bool:
+        """Return whether the surface is closed and wound outward (computed once).
+
+        Returns
+        -------
+        bool
+            See :func:`pvshadows.closed.is_closed_outward`.
+        """
+        if self._closed_outward is None:
+            self._closed_outward = is_closed_outward(self.points, self.triangles)
+        return self._closed_outward
 
     def model_bounds(self) -> np.ndarray:
         """Return the ``(2, 3)`` min/max corners in model coordinates."""

@@ -80,6 +80,11 @@ class ShadowSettings:
     normal_offset : float
         Lookup point moved along the surface normal by this many texels,
         times the sine of the angle of incidence.
+    cull_front : bool
+        Draw closed casters into the map with their front faces culled, so
+        the map holds their far sides and self-shadowing error falls on
+        surfaces facing away from the light. Open casters (a ground, a sheet)
+        are still drawn two-sided.
     zmode : str
         ``"volume"``: ``"auto"`` (z-pass when the camera is outside every
         shadow volume, z-fail otherwise, decided each frame), ``"zpass"`` or
@@ -114,6 +119,7 @@ class ShadowSettings:
     bias: float = 0.5
     slope_bias: float = 0.5
     normal_offset: float = 0.75
+    cull_front: bool = False
     zmode: str = "auto"
     extrude: str = "gpu"
     on_open: str = "fallback"
@@ -162,6 +168,13 @@ def _light_size(value: object) -> float:
     return float(value)
 
 
+def _flag(name: str, value: object) -> bool:
+    if not isinstance(value, bool):
+        msg = f"{name} must be True or False, got {value!r}"
+        raise TypeError(msg)
+    return value
+
+
 def _texels(name: str, value: object) -> float:
     if isinstance(value, bool) or not isinstance(value, Real):
         msg = f"{name} must be a number of texels (a float from 0 to 100), got {value!r}"
@@ -185,6 +198,7 @@ _CHECKS = {
     "bias": lambda v: _texels("bias", v),
     "slope_bias": lambda v: _texels("slope_bias", v),
     "normal_offset": lambda v: _texels("normal_offset", v),
+    "cull_front": lambda v: _flag("cull_front", v),
     "zmode": lambda v: _choice("zmode", v, ZMODES),
     "extrude": lambda v: _choice("extrude", v, EXTRUDE),
     "on_open": lambda v: _choice("on_open", v, ON_OPEN),

@@ -32,6 +32,7 @@ from pvshadows.scenes import standard_scene
         ({"bias": -1.0}, ValueError, "bias=-1.0 is out of range"),
         ({"normal_offset": float("nan")}, ValueError, "normal_offset=nan"),
         ({"shininess": 3}, TypeError, "unknown shadow setting(s) shininess"),
+        ({"cull_front": "yes"}, TypeError, "cull_front must be True or False, got 'yes'"),
     ],
 )
 def test_bad_settings_name_the_argument(scene, settings, error, words):

@@ -126,3 +126,22 @@ def test_resolution_extremes_work_and_error_falls_with_resolution():
     assert errors[64] > errors[1024] >= errors[4096]
     assert errors[64] <= 0.05
     assert errors[4096] <= 0.005
+
+
+def test_front_face_culling_stores_the_far_side_of_closed_casters():
+    pl = pv.Plotter(off_screen=True, window_size=[300, 200], lighting="none")
+    pl.add_mesh(pv.Plane(i_size=10, j_size=10))
+    pl.add_mesh(pv.Sphere(radius=1.0, center=(0, 0, 2)))
+    light = point_light((0, 0, 5))
+    pl.add_light(light)
+    depths = {}
+    for cull in (False, True):
+        pl.shadows.enable(filter="hard", cull_front=cull)
+        pl.shadows.measure(light)
+        cube = pl.shadows._renderers[0].technique("cubemap").cube_of(light)
+        down = cube.read_faces()[5]  # -Z face, looking at the sphere and the ground
+        centre = down.shape[0] // 2
+        depths[cull] = down[centre, centre]
+        assert pl.shadows.measure(light).misclassified <= 0.01
+    far = depths[False] / 2.0 * 4.0  # distance 2 -> 4: the sphere's far side, below its near side
+    assert depths[True] == pytest.approx(far, rel=0.01)

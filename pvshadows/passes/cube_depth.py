@@ -11,7 +11,7 @@ from pvshadows.gl.buffers import TriangleBuffers
 from pvshadows.gl.programs import ProgramCache, compile_program, glsl_source, with_defines
 from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.timing import PassTimer
-from pvshadows.passes.gl_state import depth_only_state
+from pvshadows.passes.gl_state import cull_faces, depth_only_state
 from pvshadows.report import PassReport
 from pvshadows.transforms import column_major, cube_face_projections, faces_touching_box
 
@@ -29,11 +29,14 @@ class CubeCaster:
         the light.
     face_mask : int
         Bit mask of the faces whose frustum may hold it.
+    cull : {"front", "back"} or None
+        The side of its triangles not to draw.
     """
 
     buffers: TriangleBuffers
     model_to_light: np.ndarray
     face_mask: int
+    cull: str | None = None
 
 
 def caster_face_mask(box_from_light: np.ndarray) -> int:
@@ -148,6 +151,7 @@ class CubeDepthPass:
                         program.SetUniformMatrix4x4v(
                             "modelToLight", 1, column_major(caster.model_to_light)
                         )
+                        cull_faces(self._window, caster.cull)
                         caster.buffers.draw_triangles(program)
             else:
                 for face in range(6):
@@ -171,6 +175,7 @@ class CubeDepthPass:
                             program.SetUniformMatrix4x4v(
                                 "modelToLight", 1, column_major(caster.model_to_light)
                             )
+                            cull_faces(self._window, caster.cull)
                             caster.buffers.draw_triangles(program)
         return records
 

@@ -11,7 +11,7 @@ from pvshadows.gl.binding import opengl_for
 
 
 @contextmanager
-def depth_only_state(window: vtk.vtkOpenGLRenderWindow, *, cull_front: bool = False) -> Iterator:
+def depth_only_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
     """Set up GL for writing depth only, and restore VTK's state afterwards.
 
     Everything goes through ``vtkOpenGLState`` (``Push``/``Pop`` restore the
@@ -22,9 +22,6 @@ def depth_only_state(window: vtk.vtkOpenGLRenderWindow, *, cull_front: bool = Fa
     ----------
     window : vtk.vtkOpenGLRenderWindow
         The window whose context runs the pass.
-    cull_front : bool, default: False
-        Draw only back faces (for closed casters: moves self-shadowing
-        error to the unlit side).
 
     Yields
     ------
@@ -38,11 +35,7 @@ def depth_only_state(window: vtk.vtkOpenGLRenderWindow, *, cull_front: bool = Fa
         state.vtkglDisable(gl.GL_BLEND)
         state.vtkglDisable(gl.GL_SCISSOR_TEST)
         state.vtkglDisable(gl.GL_STENCIL_TEST)
-        if cull_front:
-            state.vtkglEnable(gl.GL_CULL_FACE)
-            state.vtkglCullFace(gl.GL_FRONT)
-        else:
-            state.vtkglDisable(gl.GL_CULL_FACE)
+        state.vtkglDisable(gl.GL_CULL_FACE)
         state.vtkglEnable(gl.GL_DEPTH_TEST)
         state.vtkglDepthFunc(gl.GL_LESS)
         state.vtkglDepthMask(True)
@@ -53,3 +46,22 @@ def depth_only_state(window: vtk.vtkOpenGLRenderWindow, *, cull_front: bool = Fa
     finally:
         gl.glDisable(gl.GL_DEPTH_CLAMP)
         state.Pop()
+
+
+def cull_faces(window: vtk.vtkOpenGLRenderWindow, side: str | None) -> None:
+    """Cull one side of the next triangles drawn, or none.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context draws.
+    side : {"front", "back"} or None
+        The side to cull; ``None`` draws both.
+    """
+    gl = opengl_for(window)
+    state = window.GetState()
+    if side is None:
+        state.vtkglDisable(gl.GL_CULL_FACE)
+    else:
+        state.vtkglEnable(gl.GL_CULL_FACE)
+        state.vtkglCullFace(gl.GL_FRONT if side == "front" else gl.GL_BACK)

@@ -11,7 +11,7 @@ from pvshadows.gl.buffers import TriangleBuffers
 from pvshadows.gl.programs import ProgramCache, compile_program, glsl_source, with_defines
 from pvshadows.gl.textures import DepthMap
 from pvshadows.gl.timing import PassTimer
-from pvshadows.passes.gl_state import depth_only_state
+from pvshadows.passes.gl_state import cull_faces, depth_only_state
 from pvshadows.report import PassReport
 from pvshadows.transforms import column_major
 
@@ -26,10 +26,13 @@ class MapCaster:
         Its triangles on the GPU, in shifted model coordinates.
     model_to_light : numpy.ndarray
         ``(4, 4)`` float64 from those coordinates to the light's space.
+    cull : {"front", "back"} or None
+        The side of its triangles not to draw.
     """
 
     buffers: TriangleBuffers
     model_to_light: np.ndarray
+    cull: str | None = None
 
 
 class MapDepthPass:
@@ -101,6 +104,7 @@ class MapDepthPass:
             program.SetUniformMatrix4x4v("lightToClip", 1, column_major(light_to_clip))
             for caster in casters:
                 program.SetUniformMatrix4x4v("modelToLight", 1, column_major(caster.model_to_light))
+                cull_faces(self._window, caster.cull)
                 caster.buffers.draw_triangles(program)
         return [report]
 

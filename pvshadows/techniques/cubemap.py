@@ -16,7 +16,7 @@ from pvshadows.scene import vtk_id
 from pvshadows.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.filtering import lookup_shading
-from pvshadows.techniques.per_light import PerLightMaps
+from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
 from pvshadows.transforms import translation, view_to_light
 
 
@@ -114,6 +114,7 @@ class CubemapTechnique(PerLightMaps):
             plan.pose.key(),
             settings.resolution,
             settings.passes,
+            settings.cull_front,
             tuple(c.key() for c in plan.casters),
         )
         if key == state.key:
@@ -132,6 +133,7 @@ class CubemapTechnique(PerLightMaps):
                     context.buffers.get(caster),
                     translation(-position) @ caster.matrix @ shift,
                     caster_face_mask(caster.bounds - position),
+                    face_to_cull(caster, settings),
                 )
             )
         state.nearest, state.far = distance_range(position, plan.casters)

@@ -21,11 +21,12 @@ from pvshadows.passes.map_depth import MapCaster, MapDepthPass
 from pvshadows.planner import LightPlan
 from pvshadows.report import PassReport
 from pvshadows.scene import vtk_id
+from pvshadows.settings import ShadowSettings
 from pvshadows.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
 from pvshadows.techniques.filtering import lookup_shading
-from pvshadows.techniques.per_light import PerLightMaps
+from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
 from pvshadows.transforms import translation, world_to_view
 
 
@@ -110,9 +111,11 @@ class MapTechnique(PerLightMaps):
         if not inside:
             state.key = None
             return [PassReport("map depth", "skipped", "no caster inside the spot's cone")]
-        key = (pose.key(), settings.resolution, tuple(c.key() for c in inside))
+        key = (pose.key(), settings.resolution, settings.cull_front, tuple(c.key() for c in inside))
         detail = f"{len(inside)} of {len(context.snapshot.casters)} casters inside the cone"
-        return self._render(state, key, inside, context, far, along_z=False, detail=detail)
+        return self._render(
+            state, key, inside, context, far, along_z=False, detail=detail, settings=settings
+        )
 
     def _update_sun(
         self, plan: LightPlan, context: FrameContext, state: MapState
@@ -140,12 +143,20 @@ class MapTechnique(PerLightMaps):
         state.light_to_clip = np.diag([1.0 / fit.half_width, 1.0 / fit.half_width, 0.0, 1.0])
         tangent = np.tan(np.radians(settings.light_size))
         state.params = (fit.depth, fit.texel, fit.half_width, tangent)
-        key = (pose.key(), settings.resolution, fit.key(), tuple(c.key() for c in drawn))
+        key = (
+            pose.key(),
+            settings.resolution,
+            settings.cull_front,
+            fit.key(),
+            tuple(c.key() for c in drawn),
+        )
         detail = (
             f"fitted {2 * fit.half_width:.4g} wide to {len(drawn)} of "
             f"{len(plan.casters)} casters ({fit.texel:.3g} per texel)"
         )
-        return self._render(state, key, drawn, context, fit.depth, along_z=True, detail=detail)
+        return self._render(
+            state, key, drawn, context, fit.depth, along_z=True, detail=detail, settings=settings
+        )
 
     def _render(
         self,
@@ -157,6 +168,7 @@ class MapTechnique(PerLightMaps):
         *,
         along_z: bool,
         detail: str,
+        settings: ShadowSettings,
     ) -> list[PassReport]:
         if key == state.key:
             return [
@@ -170,6 +182,7 @@ class MapTechnique(PerLightMaps):
             MapCaster(
                 context.buffers.get(caster),
                 state.world_to_light @ caster.matrix @ translation(caster.triangles.center),
+                face_to_cull(caster, settings),
             )
             for caster in casters
         ]

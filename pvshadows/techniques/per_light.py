@@ -4,10 +4,13 @@ from __future__ import annotations
 
 from typing import ClassVar, Protocol
 
+import numpy as np
 import vtk
 
 from pvshadows.planner import LightPlan
 from pvshadows.scene import vtk_id
+from pvshadows.settings import ShadowSettings
+from pvshadows.snapshot import ActorState
 from pvshadows.techniques.filtering import FilterBindings
 
 
@@ -23,6 +26,27 @@ class Releasable(Protocol):
 
     def release(self) -> None:
         """Release them."""
+
+
+def face_to_cull(caster: ActorState, settings: ShadowSettings) -> str | None:
+    """Return the side of a caster's triangles its shadow map leaves out.
+
+    Parameters
+    ----------
+    caster : ActorState
+        The caster this frame.
+    settings : ShadowSettings
+        The light's settings.
+
+    Returns
+    -------
+    {"front", "back"} or None
+        ``"front"`` with ``cull_front=True`` for a closed, outward-wound
+        caster (``"back"`` if its matrix mirrors it), ``None`` otherwise.
+    """
+    if not settings.cull_front or not caster.triangles.closed_outward():
+        return None
+    return "front" if np.linalg.det(caster.matrix[:3, :3]) > 0.0 else "back"
 
 
 class PerLightMaps:
