@@ -49,6 +49,7 @@ def _bench(args: argparse.Namespace) -> int:
         all_cases,
         append_silhouette_table,
         cubemap_cases,
+        planar_cases,
         plot_frontier,
         run_bench,
         silhouette_timings,
@@ -62,6 +63,7 @@ def _bench(args: argparse.Namespace) -> int:
         cases = cubemap_cases(resolutions=(256,), passes=("single",))
         cases += volume_cases(extrudes=("gpu",), zmodes=("zpass",))
         cases.append(BenchCase("map", {"resolution": 256, "filter": "hard"}, "spot"))
+        cases += planar_cases(["spot"])
         sizes = (20_000,)
     rows = run_bench(cases, frames=args.frames, window_size=args.size)
     out = Path(args.out)

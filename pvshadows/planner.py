@@ -23,6 +23,7 @@ SERVES = {
     "cubemap": (LightKind.POINT, LightKind.SPOT),
     "map": (LightKind.SPOT, LightKind.DIRECTIONAL),
     "volume": (LightKind.POINT, LightKind.SPOT, LightKind.DIRECTIONAL),
+    "planar": (LightKind.POINT, LightKind.SPOT, LightKind.DIRECTIONAL),
 }
 
 

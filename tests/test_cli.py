@@ -51,13 +51,14 @@ def test_bench_writes_table_and_frontier(tmp_path):
     out = pvshadows(
         "bench", "--out", str(tmp_path), "--quick", "--frames", "3", "--size", "320x240"
     )
-    assert "[4/4]" in out
+    assert "[5/5]" in out
     rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
     assert [r["setting"] for r in rows] == [
         "resolution=256 filter=hard passes=single",
         "resolution=256 filter=pcf passes=single",
         "extrude=gpu zmode=zpass",
         "resolution=256 filter=hard",
+        "receivers=ground",
     ]
     for row in rows:
         assert 0 <= float(row["misclassified"]) < 0.05
@@ -67,6 +68,7 @@ def test_bench_writes_table_and_frontier(tmp_path):
     assert table.count("| cubemap |") == 2
     assert table.count("| volume |") == 1
     assert table.count("| map | spot |") == 1
+    assert table.count("| planar | spot |") == 1
     assert "silhouette + volume, point light" in table
     assert "Shadow volumes built on the CPU" in out
     assert (tmp_path / "frontier.png").stat().st_size > 10_000
