@@ -50,16 +50,23 @@ class BenchCase:
         Settings passed to ``configure``.
     light : str
         The standard scene's light: ``"point"``, ``"spot"`` or ``"directional"``.
+    receivers : tuple of str
+        The only actors of the standard scene that receive shadows (``"ground"``,
+        ``"box"``, ``"sphere"``, ``"cylinder"``); empty: all of them.
     """
 
     technique: str
     settings: dict = field(default_factory=dict)
     light: str = "point"
+    receivers: tuple[str, ...] = ()
 
     @property
     def setting(self) -> str:
-        """The settings as ``name=value`` words."""
-        return " ".join(f"{k}={v}" for k, v in self.settings.items())
+        """The settings as ``name=value`` words (and the receivers, when not all)."""
+        words = [f"{k}={v}" for k, v in self.settings.items()]
+        if self.receivers:
+            words.append(f"receivers={'+'.join(self.receivers)}")
+        return " ".join(words)
 
     @property
     def label(self) -> str:
@@ -213,13 +220,13 @@ def all_cases() -> list[BenchCase]:
         filters, and shadow volumes (GPU and CPU extrusion, z-pass and
         z-fail); spot light: 2D map x resolution x filter, volumes, and VTK's
         ``enable_shadows()``; directional light: fitted 2D map x resolution x
-        filter, and volumes.
+        filter, and volumes; every light: planar shadows on the ground alone.
 
     Examples
     --------
     >>> from pvshadows.bench import all_cases
     >>> sorted({c.technique for c in all_cases()})
-    ['auto', 'cubemap', 'map', 'volume', 'vtk']
+    ['auto', 'cubemap', 'map', 'planar', 'volume', 'vtk']
     """
     cases = cubemap_cases()
     cases += [c for c in filter_cases("cubemap", "point", [1024]) if c.soft]
@@ -229,7 +236,33 @@ def all_cases() -> list[BenchCase]:
     cases.append(BenchCase("vtk", {}, "spot"))
     cases += filter_cases("map", "directional", [1024, 2048])
     cases += volume_cases(zmodes=("auto",), light="directional")
+    cases += planar_cases()
     return cases + preset_cases()
+
+
+def planar_cases(lights: Iterable[str] = ("point", "spot", "directional")) -> list[BenchCase]:
+    """Return the planar-shadow cases: the standard scene with only the ground receiving.
+
+    Planar shadows fall on one plane and objects do not shadow each other,
+    so the other actors are not receivers in these cases.
+
+    Parameters
+    ----------
+    lights : iterable of str
+        The kinds of light.
+
+    Returns
+    -------
+    list of BenchCase
+        One case per light.
+
+    Examples
+    --------
+    >>> from pvshadows.bench import planar_cases
+    >>> [case.label for case in planar_cases(["spot"])]
+    ['planar (spot) receivers=ground']
+    """
+    return [BenchCase("planar", {}, light, ("ground",)) for light in lights]
 
 
 def volume_cases(
@@ -404,6 +437,12 @@ class PairedClock:
         return statistics.median(times[0]), statistics.median(times[1])
 
 
+def _receive_only(scene: StandardScene, names: tuple[str, ...]) -> None:
+    """Let only the named actors of the standard scene receive shadows (all when none are)."""
+    for name in ("ground", "box", "sphere", "cylinder"):
+        scene.plotter.shadows.set_receiver(getattr(scene, name), not names or name in names)
+
+
 def _bench_light(
     cases: list[BenchCase],
     light: str,
@@ -422,6 +461,7 @@ def _bench_light(
     area_light = f"area light {LIGHT_SIZE[light]:g}{'deg' if light == 'directional' else ''}"
     rows = []
     for case in cases:
+        _receive_only(shadowed, case.receivers)
         if case.technique == "vtk":
             plotter.enable_shadows()
             base_moving, moving = clock.medians(frames, moving=True)

@@ -51,6 +51,7 @@ def _bench(args: argparse.Namespace) -> int:
         append_presets_table,
         append_silhouette_table,
         cubemap_cases,
+        planar_cases,
         planner_counts,
         plot_frontier,
         preset_cases,
@@ -66,6 +67,7 @@ def _bench(args: argparse.Namespace) -> int:
         cases = cubemap_cases(resolutions=(256,), passes=("single",))
         cases += volume_cases(extrudes=("gpu",), zmodes=("zpass",))
         cases.append(BenchCase("map", {"resolution": 256, "filter": "hard"}, "spot"))
+        cases += planar_cases(["spot"])
         cases += [c for c in preset_cases() if c.light == "point"][:1]
         sizes = (20_000,)
     rows = run_bench(cases, frames=args.frames, window_size=args.size)

@@ -12,6 +12,7 @@ import vtk
 from pvshadows.frame import RendererShadows
 from pvshadows.lights import light_kind, light_pose
 from pvshadows.measure import Measurement, compare
+from pvshadows.planes import require_plane
 from pvshadows.planner import SERVES, LightPlan
 from pvshadows.probe import read_visibility
 from pvshadows.reference import SceneMesh, ViewSpec, trace_reference
@@ -79,7 +80,9 @@ class ShadowsComponent:
             ``"auto"`` lets pvshadows choose per light (``"cubemap"`` for
             point lights), or name one technique for all lights
             (``"volume"``: stencil shadow volumes, pixel-exact hard shadows
-            from every kind of light).
+            from every kind of light; ``"planar"``: casters flattened onto
+            one receiving plane, the cheapest, every kind of light, but
+            objects do not shadow each other).
         quality : {"draft", "balanced", "exact"}, default: "balanced"
             A point on the accuracy-cost frontier that ``pvshadows bench``
             measures: ``"draft"`` (512-texel maps, hard edges), ``"balanced"``
@@ -229,7 +232,9 @@ class ShadowsComponent:
         """
         self._reader.casting[vtk_id(self._check_actor(actor, cast))] = bool(cast)
 
-    def set_receiver(self, actor: vtk.vtkActor, receive: bool = True) -> None:
+    def set_receiver(
+        self, actor: vtk.vtkActor, receive: bool = True, *, plane: bool = False
+    ) -> None:
         """Choose whether an actor shows shadows (all lit actors do by default).
 
         Parameters
@@ -238,6 +243,17 @@ class ShadowsComponent:
             The actor.
         receive : bool, default: True
             ``False`` to draw it fully lit.
+        plane : bool, default: False
+            ``True`` names it the plane that ``technique="planar"`` flattens
+            shadows onto (otherwise the largest flat receiver is found on
+            its own). Its points must lie in one plane, within
+            :data:`pvshadows.planes.PLANE_TOLERANCE` of its size.
+
+        Raises
+        ------
+        ValueError
+            With ``plane=True``, for an actor that is not flat (saying how
+            far off a plane its points are) or with ``receive=False``.
 
         Examples
         --------
@@ -246,8 +262,23 @@ class ShadowsComponent:
         >>> pl = pv.Plotter(off_screen=True)
         >>> label = pl.add_mesh(pv.Sphere())
         >>> pl.shadows.set_receiver(label, False)
+        >>> floor = pl.add_mesh(pv.Plane(i_size=10, j_size=10))
+        >>> pl.shadows.set_receiver(floor, plane=True)
         """
-        self._reader.receiving[vtk_id(self._check_actor(actor, receive))] = bool(receive)
+        key = vtk_id(self._check_actor(actor, receive))
+        if not isinstance(plane, bool | np.bool_):
+            msg = f"plane must be True or False, got {plane!r}"
+            raise TypeError(msg)
+        if plane:
+            if not receive:
+                msg = "plane=True names a receiver of planar shadows: it needs receive=True"
+                raise ValueError(msg)
+            name = self._actor_name(actor)
+            require_plane(actor, self._reader.triangles_of(actor), name)
+            self._reader.planes.add(key)
+        else:
+            self._reader.planes.discard(key)
+        self._reader.receiving[key] = bool(receive)
 
     def show_volumes(self, show: bool = True) -> None:
         """Draw the shadow volumes translucent over the scene, for debugging.

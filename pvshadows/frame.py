@@ -152,7 +152,8 @@ class RendererShadows:
         touched = set()
         for state in snapshot.receivers:
             edits = self._edits_of(state.actor)
-            edits.apply(receiver_replacements(state.actor, shadings))
+            key = vtk_id(state.actor)
+            edits.apply(receiver_replacements(state.actor, [s.for_actor(key) for s in shadings]))
             edits.set_uniforms(uniforms)
             touched.add(vtk_id(state.actor))
         for actor in snapshot.bystanders:

@@ -65,6 +65,7 @@ class Capabilities:
             if self.geometry_shaders
             else "unavailable: needs geometry shaders (OpenGL 3.2)",
             "volume (extrude='cpu')": "available",
+            "planar (every light)": "available",
         }
         return found
 

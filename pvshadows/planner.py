@@ -4,8 +4,10 @@ A light casts only when it is on, has intensity, and some caster and some
 receiver the camera sees are in its reach (a spot light's cone; everything
 for point and directional lights). Its casters are those in its reach. Its
 technique follows its kind, its settings and the quality asked for: with
-``technique="auto"``, a cube map for a point light, a 2D map for spot and
-directional lights, and shadow volumes for ``quality="exact"``. What each
+``technique="auto"``, planar shadows when the only receiver is one plane
+(then objects cannot shadow each other, so nothing is lost), else a cube map
+for a point light, a 2D map for spot and directional lights, and shadow
+volumes for ``quality="exact"``. What each
 technique then reuses (maps whose light and casters did not change, cube
 faces without casters) it reports in the same frame's words.
 """
@@ -20,6 +22,7 @@ import vtk
 
 from pvshadows.culling import box_in_frustum, box_in_spot, frustum_planes
 from pvshadows.lights import LightKind, LightPose, casts_light, light_kind, light_pose
+from pvshadows.planes import sole_plane
 from pvshadows.settings import ShadowSettings
 from pvshadows.snapshot import ActorState, Snapshot
 
@@ -30,6 +33,7 @@ SERVES = {
     "cubemap": (LightKind.POINT, LightKind.SPOT),
     "map": (LightKind.SPOT, LightKind.DIRECTIONAL),
     "volume": (LightKind.POINT, LightKind.SPOT, LightKind.DIRECTIONAL),
+    "planar": (LightKind.POINT, LightKind.SPOT, LightKind.DIRECTIONAL),
 }
 
 
@@ -70,8 +74,15 @@ class LightPlan:
     notes: list[str] = field(default_factory=list)
 
 
-def _technique_for(kind: LightKind, settings: ShadowSettings) -> tuple[str | None, str]:
+def _technique_for(
+    kind: LightKind, settings: ShadowSettings, only_a_plane: bool
+) -> tuple[str | None, str]:
     if settings.technique == "auto":
+        if only_a_plane:
+            return "planar", (
+                f"auto chose planar for a {kind.value} light: the only receiver is one plane, "
+                "so flattening the casters onto it is exact and the cheapest"
+            )
         if settings.quality == "exact":
             return "volume", (
                 f"auto chose volume for a {kind.value} light: quality='exact' asks for "
@@ -115,6 +126,7 @@ def plan_frame(
     casters = snapshot.casters
     planes = frustum_planes(renderer.GetActiveCamera(), renderer.GetTiledAspectRatio())
     seen = [r for r in snapshot.receivers if box_in_frustum(r.bounds, planes)]
+    only_a_plane = sole_plane(snapshot.receivers) is not None
     for index in range(lights.GetNumberOfItems()):
         light = lights.GetNextItem()
         plan = LightPlan(light, index, vtk_index, light_kind(light), settings_for(light))
@@ -139,7 +151,7 @@ def plan_frame(
         except ValueError as error:
             plan.notes.append(f"casts nothing: {error}")
             continue
-        technique, why = _technique_for(plan.kind, plan.settings)
+        technique, why = _technique_for(plan.kind, plan.settings, only_a_plane)
         if technique is None:
             plan.notes.append(why)
             continue

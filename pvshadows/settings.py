@@ -12,7 +12,7 @@ from dataclasses import dataclass, fields, replace
 from numbers import Integral, Real
 
 #: Techniques a light can be given; "auto" lets the planner choose.
-TECHNIQUES = ("auto", "cubemap", "map", "volume")
+TECHNIQUES = ("auto", "cubemap", "map", "volume", "planar")
 #: Filters of the map-based techniques.
 FILTERS = ("hard", "pcf", "random", "pcss")
 #: Ways to fill a depth cube.
@@ -47,8 +47,10 @@ class ShadowSettings:
     ----------
     technique : str
         ``"auto"`` (the planner chooses), ``"cubemap"`` (point and spot
-        lights), ``"map"`` (spot and directional lights) or ``"volume"``
-        (stencil shadow volumes, every kind of light).
+        lights), ``"map"`` (spot and directional lights), ``"volume"``
+        (stencil shadow volumes, every kind of light) or ``"planar"``
+        (casters flattened onto one receiving plane, every kind of light;
+        objects do not shadow each other).
     quality : str
         What ``technique="auto"`` aims for: ``"draft"`` (cheapest maps,
         hard edges), ``"balanced"`` (maps with filtered edges) or

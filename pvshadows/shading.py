@@ -64,6 +64,11 @@ class LightShading:
         Other files of ``glsl/`` that define functions the expression calls.
     defines : tuple of str
         Macros those files need.
+    only_on : frozenset of str or None
+        Keys (:func:`pvshadows.scene.vtk_id`) of the only receivers that read
+        the light this way; ``None``: every receiver does.
+    elsewhere : LightShading or None
+        How the other receivers read the light (``None``: fully lit).
     """
 
     vtk_index: int
@@ -72,6 +77,33 @@ class LightShading:
     needs: tuple[tuple[str, str], ...] = ()
     sources: tuple[str, ...] = ()
     defines: tuple[str, ...] = ()
+    only_on: frozenset[str] | None = None
+    elsewhere: LightShading | None = None
+
+    def for_actor(self, key: str) -> LightShading:
+        """Return how the receiver ``key`` reads the light.
+
+        Parameters
+        ----------
+        key : str
+            The receiver's :func:`pvshadows.scene.vtk_id`.
+
+        Returns
+        -------
+        LightShading
+            This shading, or :attr:`elsewhere` (fully lit when ``None``) for
+            a receiver outside :attr:`only_on`.
+
+        Examples
+        --------
+        >>> from pvshadows.shading import LightShading
+        >>> plane_only = LightShading(0, "mask()", only_on=frozenset({"ground"}))
+        >>> plane_only.for_actor("ground").visibility, plane_only.for_actor("box").visibility
+        ('mask()', '1.0')
+        """
+        if self.only_on is None or key in self.only_on:
+            return self
+        return self.elsewhere or LightShading(self.vtk_index, "1.0")
 
 
 def _probe_output(colour: str) -> str:

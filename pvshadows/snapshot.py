@@ -33,6 +33,9 @@ class ActorState:
         World bounds ``(2, 3)``.
     caster, receiver : bool
         Its roles this frame.
+    plane : bool
+        Named the receiving plane of planar shadows
+        (``pl.shadows.set_receiver(actor, plane=True)``).
     """
 
     actor: vtk.vtkActor
@@ -42,6 +45,7 @@ class ActorState:
     bounds: np.ndarray
     caster: bool
     receiver: bool
+    plane: bool = False
 
     def key(self) -> tuple:
         """Return a value that changes when the actor's shadow-casting shape changes."""
@@ -90,6 +94,8 @@ class SceneReader:
         self._versions = 0
         self.casting: dict[str, bool] = {}
         self.receiving: dict[str, bool] = {}
+        #: Actors named receiving planes of planar shadows.
+        self.planes: set[str] = set()
         self.problems: dict[str, str] = {}
 
     def triangles_of(self, actor: vtk.vtkActor) -> ActorTriangles | None:
@@ -177,6 +183,7 @@ class SceneReader:
                     world_bounds(triangles, matrix),
                     caster,
                     receiver,
+                    receiver and vtk_id(actor) in self.planes,
                 )
             )
         for key in set(self._cache) - seen:

@@ -51,13 +51,14 @@ def test_bench_writes_table_and_frontier(tmp_path):
     out = pvshadows(
         "bench", "--out", str(tmp_path), "--quick", "--frames", "3", "--size", "320x240"
     )
-    assert "[5/5]" in out
+    assert "[6/6]" in out
     rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
     assert [r["setting"] for r in rows] == [
         "resolution=256 filter=hard passes=single",
         "resolution=256 filter=pcf passes=single",
         "extrude=gpu zmode=zpass",
         "resolution=256 filter=hard",
+        "receivers=ground",
         "quality=draft",
     ]
     for row in rows:
@@ -72,6 +73,7 @@ def test_bench_writes_table_and_frontier(tmp_path):
     planner = table[table.index("Only what the scene calls for") :]
     assert "| 8 spot lights, 6 of them reach no visible receiver (1 frame) | 2 | 8 |" in planner
     assert "static scene seen from 3 new cameras (3 frames) | 0 | 9 |" in planner
+    assert table.count("| planar | spot |") == 1
     assert "silhouette + volume, point light" in table
     assert "Shadow volumes built on the CPU" in out
     assert (tmp_path / "frontier.png").stat().st_size > 10_000

@@ -109,7 +109,23 @@ def test_point_light_faces_without_casters_are_explained():
     pl.add_mesh(pv.Plane(center=(0, 0, -1), i_size=10, j_size=10))
     light = point_light((0, 0, 0))
     pl.add_light(light)
-    pl.shadows.enable()
+    pl.shadows.enable(technique="cubemap")
     draw(pl)
     detail = pl.shadows.last_frame.lights[0].passes[0].detail
     assert "skipped (no caster in frustum)" in detail
+
+
+@pytest.mark.parametrize("light", ["point", "spot", "directional"])
+def test_auto_picks_planar_only_when_the_only_receiver_is_one_plane(light):
+    scene = standard_scene(light=light, window_size=(400, 300))
+    pl = scene.plotter
+    pl.shadows.enable()
+    draw(pl)
+    assert pl.shadows.last_frame.lights[0].technique != "planar"  # objects shadow each other
+    for actor in (scene.box, scene.sphere, scene.cylinder):
+        pl.shadows.set_receiver(actor, False)
+    draw(pl)
+    report = pl.shadows.last_frame.lights[0]
+    assert report.technique == "planar"
+    assert "the only receiver is one plane" in " ".join(report.notes)
+    assert pl.shadows.measure(scene.light).misclassified <= 0.005

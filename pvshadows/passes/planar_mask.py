@@ -1,0 +1,155 @@
+"""The planar-shadow pass: casters flattened onto the plane, drawn into a light's mask.
+
+Per light, in a framebuffer of pvshadows' own the size of the viewport
+(:class:`pvshadows.gl.colour_target.ColourTarget`): the mask is cleared to 1
+(lit), then every caster is drawn with the camera's projection times the
+flattening matrix (:func:`pvshadows.planes.flattening`), writing 0. The mask
+is binary, so a pixel covered by several flattened triangles is exactly as
+dark as one covered once, which is what a stencil test ("draw where not yet
+drawn") would give. No depth test runs at all: only the plane reads the mask,
+at its own pixels, so the shadow ends where the plane ends and cannot fight
+with it in depth at any scale.
+
+Two clip distances cut each flattened triangle where the caster's triangle
+crosses the plane (only the part on the light's side casts) and where it
+passes beyond a positional light's height (no anti-shadows in the mask; the
+camera's own clipping already keeps them off the plane's pixels, since their
+homogeneous image has a negative ``w`` and could only be seen, mirrored,
+along lines of sight that point away from the plane). Depth clamping keeps
+shadows that reach to infinity (a light barely above the plane) from being
+cut at the far plane.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+
+import numpy as np
+import vtk
+
+from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.gl.colour_target import ColourTarget
+from pvshadows.gl.mask_target import MaskTexture
+from pvshadows.gl.programs import compile_program, glsl_source, with_defines
+from pvshadows.transforms import column_major
+
+
+@dataclass
+class FlatDraw:
+    """One caster as the planar pass draws it.
+
+    Attributes
+    ----------
+    buffers : TriangleBuffers
+        Its triangles on the GPU, in its centred model coordinates.
+    model_to_clip : numpy.ndarray
+        ``(4, 4)`` float64: camera projection, view, flattening and model.
+    plane_model : numpy.ndarray
+        ``(4,)`` the plane in the caster's model coordinates, positive on
+        the light's side.
+    flat_w : numpy.ndarray
+        ``(4,)`` the flattened point's ``w`` as a function of the model point.
+    """
+
+    buffers: TriangleBuffers
+    model_to_clip: np.ndarray
+    plane_model: np.ndarray
+    flat_w: np.ndarray
+
+
+class PlanarMaskPass:
+    """Draws flattened casters into per-light masks, in one window.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context runs it.
+    """
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._window = window
+        self._gl = opengl_for(window)
+        self._program: vtk.vtkShaderProgram | None = None
+        self._target: ColourTarget | None = None
+
+    def _bind(self) -> vtk.vtkShaderProgram:
+        if self._program is None:
+            self._program = compile_program(
+                self._window,
+                with_defines(glsl_source("planar_flatten.vert")),
+                with_defines(glsl_source("planar_mask.frag")),
+            )
+        self._window.GetShaderCache().ReadyShaderProgram(self._program)
+        return self._program
+
+    @contextmanager
+    def _state(self, mask: MaskTexture) -> Iterator:
+        gl = self._gl
+        state = self._window.GetState()
+        state.Push()
+        clips = (gl.GL_CLIP_DISTANCE0, gl.GL_CLIP_DISTANCE1, gl.GL_DEPTH_CLAMP)
+        were = [bool(gl.glIsEnabled(cap)) for cap in clips]
+        try:
+            if self._target is None:
+                self._target = ColourTarget(self._window)
+            self._target.bind(mask)
+            state.vtkglDisable(gl.GL_BLEND)
+            state.vtkglDisable(gl.GL_SCISSOR_TEST)
+            state.vtkglDisable(gl.GL_CULL_FACE)
+            state.vtkglDisable(gl.GL_STENCIL_TEST)
+            state.vtkglDisable(gl.GL_DEPTH_TEST)
+            state.vtkglDepthMask(False)
+            state.vtkglColorMask(True, True, True, True)
+            state.vtkglClearColor(1.0, 1.0, 1.0, 1.0)
+            state.vtkglClear(gl.GL_COLOR_BUFFER_BIT)
+            yield gl
+        finally:
+            for cap, was in zip(clips, were, strict=True):
+                (gl.glEnable if was else gl.glDisable)(cap)
+            state.Pop()
+
+    def fill_lit(self, mask: MaskTexture) -> None:
+        """Clear a mask to 1 (lit everywhere).
+
+        Parameters
+        ----------
+        mask : MaskTexture
+            The light's mask.
+        """
+        with self._state(mask):
+            pass
+
+    def draw(self, mask: MaskTexture, draws: list[FlatDraw]) -> None:
+        """Clear a light's mask to lit and draw its flattened casters into it as shadow.
+
+        Parameters
+        ----------
+        mask : MaskTexture
+            The light's mask, the size of the viewport.
+        draws : list of FlatDraw
+            The casters.
+        """
+        with self._state(mask) as gl:
+            gl.glEnable(gl.GL_CLIP_DISTANCE0)
+            gl.glEnable(gl.GL_CLIP_DISTANCE1)
+            gl.glEnable(gl.GL_DEPTH_CLAMP)
+            program = self._bind()
+            for draw in draws:
+                program.SetUniformMatrix4x4v("modelToClip", 1, column_major(draw.model_to_clip))
+                program.SetUniform4f(
+                    "planeModel", np.asarray(draw.plane_model, np.float32).tolist()
+                )
+                program.SetUniform4f("flatW", np.asarray(draw.flat_w, np.float32).tolist())
+                draw.buffers.draw_triangles(program)
+
+    def release(self) -> None:
+        """Release the program and the framebuffer."""
+        if self._program is not None:
+            self._program.ReleaseGraphicsResources(self._window)
+            self._program = None
+        if self._target is not None:
+            self._target.release()
+            self._target = None

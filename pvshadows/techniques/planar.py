@@ -1,0 +1,428 @@
+"""Planar projected shadows: the casters flattened onto one receiving plane.
+
+The cheapest technique, for every kind of light, and exact on the plane it
+serves. Per frame and light:
+
+1. the receiving plane is chosen (:func:`pvshadows.planes.choose_plane`):
+   an actor named with ``pl.shadows.set_receiver(actor, plane=True)``, or
+   else a flat receiver found on its own (the largest, if several), and
+   oriented so that the light is on its positive side;
+2. every caster on the light's side of the plane is drawn through the
+   flattening matrix ``(plane . light) I - light plane^T``
+   (:func:`pvshadows.planes.flattening`) and the camera's projection into
+   the light's *mask*, a screen-space texture the size of the viewport,
+   cleared to 1 (lit) and written 0 (:mod:`pvshadows.passes.planar_mask`).
+
+Only the plane reads the mask, at its own pixel (``gl_FragCoord``), times a
+facing test. The mask is binary: overlapping flattened triangles never
+darken a pixel twice, as with a stencil test, and the shadow ends where the
+plane ends, with no depth test against it and so no z-fighting at any scale.
+The matrices are composed in float64 around each caster's centre, so a plane
+a million units from the origin is as sharp as one at it.
+
+Objects do not shadow each other with planar shadows: every other receiver
+of the light gets its facing test only. The mask is screen-space, so it is
+drawn again whenever the camera, the light, the plane or a caster moved,
+and reused otherwise.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import vtk
+
+from pvshadows.gl.mask_target import MaskTexture
+from pvshadows.lights import LightKind
+from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
+from pvshadows.planes import PlaneChoice, choose_plane, facing, flattening
+from pvshadows.planner import LightPlan
+from pvshadows.report import PassReport
+from pvshadows.scene import vtk_id
+from pvshadows.shading import LightShading
+from pvshadows.snapshot import ActorState
+from pvshadows.techniques.base import FrameContext
+from pvshadows.transforms import translation, world_to_view
+
+_PASS = "planar mask"
+
+
+@dataclass
+class _LightState:
+    mask: MaskTexture
+    key: tuple | None = None
+    frame: int = -1
+    plane_actor: str | None = None
+    active: bool = False
+
+
+def homogeneous_light(plan: LightPlan) -> np.ndarray:
+    """Return a planned light as a homogeneous world 4-vector.
+
+    Parameters
+    ----------
+    plan : LightPlan
+        The light's plan (its pose is read).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(position, 1)`` for point and spot lights, ``(direction towards
+        the light, 0)`` for directional ones.
+    """
+    if plan.pose.kind is LightKind.DIRECTIONAL:
+        return np.append(-plan.pose.direction, 0.0)
+    return np.append(plan.pose.position, 1.0)
+
+
+def may_cast(caster: ActorState, plane: np.ndarray, light: np.ndarray) -> bool:
+    """Return whether any part of a caster lies between the plane and the light's height.
+
+    Parameters
+    ----------
+    caster : ActorState
+        The caster (its world bounds are tested).
+    plane : numpy.ndarray
+        ``(4,)`` the plane, positive on the light's side.
+    light : numpy.ndarray
+        ``(4,)`` the homogeneous light.
+
+    Returns
+    -------
+    bool
+        ``False`` when its bounds lie wholly under the plane, or wholly
+        beyond a positional light's height above it.
+    """
+    lo, hi = caster.bounds
+    corners = np.array(
+        [[x, y, z, 1.0] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
+    )
+    heights = corners @ plane
+    if heights.max() <= 0.0:
+        return False
+    return light[3] == 0.0 or heights.min() < plane @ light
+
+
+def _camera_sees_unlit_side(camera: vtk.vtkCamera, plane: np.ndarray) -> bool:
+    if camera.GetParallelProjection():
+        return float(np.dot(plane[:3], camera.GetDirectionOfProjection())) > 0.0
+    return float(plane @ np.append(camera.GetPosition(), 1.0)) < 0.0
+
+
+def _matrix(vtk_matrix: vtk.vtkMatrix4x4) -> np.ndarray:
+    return np.array([[vtk_matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
+
+
+def caster_matrices(
+    model: np.ndarray,
+    plane: np.ndarray,
+    light: np.ndarray,
+    projection: np.ndarray,
+    view: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return what the planar pass needs to draw one caster, composed in float64.
+
+    The caster is drawn in a frame centred on its own centre ``o``: the
+    plane, the light and the camera's view are moved there before they are
+    multiplied, so no matrix handed to the GPU holds the scene's distance
+    from the origin.
+
+    Parameters
+    ----------
+    model : numpy.ndarray
+        ``(4, 4)`` from the caster's (centred) model coordinates to world.
+    plane : numpy.ndarray
+        ``(4,)`` the world plane, positive on the light's side, ``|n| = 1``.
+    light : numpy.ndarray
+        ``(4,)`` the homogeneous world light.
+    projection, view : numpy.ndarray
+        ``(4, 4)`` the camera's projection and world-to-view matrices.
+
+    Returns
+    -------
+    model_to_clip : numpy.ndarray
+        ``(4, 4)`` projection, view, flattening and model.
+    plane_model : numpy.ndarray
+        ``(4,)`` the plane in model coordinates (signed distance in world units).
+    flat_w : numpy.ndarray
+        ``(4,)`` the flattened point's ``w`` as a function of the model point.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.techniques.planar import caster_matrices
+    >>> from pvshadows.transforms import translation
+    >>> ground, bulb = np.array([0, 0, 1.0, 0]), np.array([0, 0, 4.0, 1])
+    >>> to_clip, plane, w = caster_matrices(
+    ...     translation([1, 0, 2]), ground, bulb, np.eye(4), np.eye(4)
+    ... )
+    >>> p = to_clip @ [0, 0, 0, 1.0]
+    >>> (p[:3] / p[3]).tolist(), float(plane @ [0, 0, 0, 1.0])
+    ([2.0, 0.0, 0.0], 2.0)
+    """
+    centre = model[:3, 3] / model[3, 3]
+    local = translation(-centre) @ model
+    plane_local = translation(centre).T @ plane
+    light_local = translation(-centre * light[3]) @ light
+    flat = flattening(plane_local, light_local) @ local
+    to_clip = projection @ (view @ translation(centre)) @ flat
+    return to_clip, local.T @ plane_local, flat[3].copy()
+
+
+def flat_draws(
+    casters: list[ActorState],
+    plane: np.ndarray,
+    light: np.ndarray,
+    context: FrameContext,
+) -> list[FlatDraw]:
+    """Return each caster's draw for the planar pass (:func:`caster_matrices`).
+
+    Parameters
+    ----------
+    casters : list of ActorState
+        The casters.
+    plane : numpy.ndarray
+        ``(4,)`` the world plane, positive on the light's side, ``|n| = 1``.
+    light : numpy.ndarray
+        ``(4,)`` the homogeneous world light.
+    context : FrameContext
+        The frame (camera, renderer, actor buffers).
+
+    Returns
+    -------
+    list of FlatDraw
+        One per caster.
+    """
+    camera, renderer = context.camera, context.renderer
+    projection = _matrix(camera.GetProjectionTransformMatrix(renderer.GetTiledAspectRatio(), -1, 1))
+    view = _matrix(camera.GetViewTransformMatrix())
+    return [
+        FlatDraw(
+            context.buffers.get(caster),
+            *caster_matrices(
+                caster.matrix @ translation(caster.triangles.center),
+                plane,
+                light,
+                projection,
+                view,
+            ),
+        )
+        for caster in casters
+    ]
+
+
+class PlanarTechnique:
+    """Keeps the screen-space planar-shadow mask of each light that uses ``planar``.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context owns the masks and the framebuffer.
+    """
+
+    name = "planar"
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._window = window
+        self._pass = PlanarMaskPass(window)
+        self._lights: dict[str, _LightState] = {}
+
+    def _state(self, plan: LightPlan, width: int, height: int) -> _LightState:
+        key = vtk_id(plan.light)
+        state = self._lights.get(key)
+        if state is not None and state.mask.size != (width, height):
+            self._lights.pop(key).mask.release()
+            state = None
+        if state is None:
+            state = self._lights[key] = _LightState(MaskTexture(self._window, width, height))
+        return state
+
+    def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
+        """Bring the light's mask up to date for this frame.
+
+        Parameters
+        ----------
+        plan : LightPlan
+            The light's plan (technique ``"planar"``).
+        context : FrameContext
+            This frame's renderer, camera, actors, buffers and timer.
+
+        Returns
+        -------
+        list of PassReport
+            The mask pass, run, reused or skipped; ``plan.notes`` gets which
+            plane receives and why.
+        """
+        receivers = context.snapshot.receivers
+        choice = choose_plane(receivers)
+        plan.notes.append(choice.reason)
+        width, height = context.viewport_size()
+        if width < 1 or height < 1:
+            state = self._lights.pop(vtk_id(plan.light), None)
+            if state is not None:
+                state.mask.release()
+            return [PassReport(_PASS, "skipped", "the viewport has no pixels")]
+        state = self._state(plan, width, height)
+        state.plane_actor = None
+        if choice.actor is None:
+            return [PassReport(_PASS, "skipped", "no receiving plane")]
+        state.plane_actor = vtk_id(choice.actor.actor)
+        others = [r.name for r in receivers if r is not choice.actor]
+        if others:
+            plan.notes.append(
+                "objects do not shadow each other with planar shadows: "
+                f"no shadow from this light falls on {', '.join(others)}"
+            )
+        return self._draw(plan, context, state, choice)
+
+    def _draw(
+        self, plan: LightPlan, context: FrameContext, state: _LightState, choice: PlaneChoice
+    ) -> list[PassReport]:
+        light = homogeneous_light(plan)
+        plane = facing(choice.plane, light)
+        name = choice.actor.name
+        if not plane @ light > 0.0:
+            plan.notes.append(f"the light lies in the plane of {name}: it only grazes it")
+            return [PassReport(_PASS, "skipped", "the light lies in the plane")]
+        if _camera_sees_unlit_side(context.camera, plane):
+            plan.notes.append(
+                f"the camera sees the side of {name} that faces away from the light: "
+                "it is unlit, nothing to flatten"
+            )
+            return [PassReport(_PASS, "skipped", "the camera sees the plane's unlit side")]
+        casters = [
+            c
+            for c in plan.casters
+            if vtk_id(c.actor) != state.plane_actor and may_cast(c, plane, light)
+        ]
+        if not casters:
+            if state.key != ("lit",):
+                self._pass.fill_lit(state.mask)
+                state.key = ("lit",)
+            return [
+                PassReport(_PASS, "skipped", f"no caster between the light and {name}: all lit")
+            ]
+        camera = context.camera
+        key = (
+            choice.actor.key(),
+            plane.tobytes(),
+            plan.pose.key(),
+            _matrix(camera.GetViewTransformMatrix()).tobytes(),
+            _matrix(
+                camera.GetProjectionTransformMatrix(context.renderer.GetTiledAspectRatio(), -1, 1)
+            ).tobytes(),
+            state.mask.size,
+            tuple(c.key() for c in casters),
+        )
+        if key == state.key:
+            return [
+                PassReport(
+                    _PASS,
+                    "reused",
+                    f"camera, light, plane and casters unchanged since frame {state.frame}; "
+                    "the mask is screen-space, so a moving camera redraws it",
+                )
+            ]
+        record = PassReport(
+            _PASS, "run", f"{len(casters)} of {len(plan.casters)} casters flattened onto {name}"
+        )
+        draws = flat_draws(casters, plane, light, context)
+        with context.timer.measure(record):
+            self._pass.draw(state.mask, draws)
+        state.key, state.frame = key, context.frame
+        return [record]
+
+    def shading(self, plan: LightPlan) -> LightShading:
+        """Return how receivers read this light: the plane its mask, the others facing only.
+
+        Parameters
+        ----------
+        plan : LightPlan
+            The light's plan.
+
+        Returns
+        -------
+        LightShading
+            The mask lookup for the receiving plane (:attr:`LightShading.only_on`),
+            with a facing test for every other receiver.
+        """
+        i = plan.vtk_index
+        facing_only = LightShading(
+            i,
+            f"pvsFacingLight(pvsPlanarLightVC{i}, vertexVC.xyz, pvsNormalVC)",
+            sources=("shadow_planar.glsl",),
+        )
+        state = self._lights.get(vtk_id(plan.light))
+        if state is None or state.plane_actor is None:
+            return facing_only
+        return LightShading(
+            i,
+            f"pvsPlanarShadow(pvsPlanarMask{i}, pvsPlanarViewport{i}, pvsPlanarLightVC{i}, "
+            "vertexVC.xyz, pvsNormalVC)",
+            {f"pvsPlanarMask{i}": "sampler2D"},
+            sources=("shadow_planar.glsl",),
+            only_on=frozenset({state.plane_actor}),
+            elsewhere=facing_only,
+        )
+
+    def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+        """Bind the light's mask and return the receivers' uniforms.
+
+        Parameters
+        ----------
+        plan : LightPlan
+            The light's plan.
+        context : FrameContext
+            This frame's renderer and camera.
+
+        Returns
+        -------
+        dict
+            Uniform names and values for every receiver.
+        """
+        i = plan.vtk_index
+        light = homogeneous_light(plan)
+        light_vc = world_to_view(context.camera) @ light
+        if light[3] == 0.0:
+            light_vc[:3] /= np.linalg.norm(light_vc[:3])
+        uniforms: dict[str, object] = {f"pvsPlanarLightVC{i}": light_vc}
+        state = self._lights.get(vtk_id(plan.light))
+        if state is None or state.plane_actor is None:
+            return uniforms
+        state.mask.texture.Activate()
+        state.active = True
+        width, height = context.renderer.GetSize()
+        x0, y0 = context.renderer.GetOrigin()
+        uniforms[f"pvsPlanarMask{i}"] = state.mask.texture.GetTextureUnit()
+        uniforms[f"pvsPlanarViewport{i}"] = (float(x0), float(y0), float(width), float(height))
+        return uniforms
+
+    def deactivate(self) -> None:
+        """Free the texture units bound by :meth:`activate`."""
+        for state in self._lights.values():
+            if state.active:
+                state.mask.texture.Deactivate()
+                state.active = False
+
+    def mask_of(self, light: vtk.vtkLight) -> MaskTexture | None:
+        """Return the mask kept for a light, if any (for tests and debugging)."""
+        state = self._lights.get(vtk_id(light))
+        return state.mask if state else None
+
+    def keep_only(self, plans: list[LightPlan]) -> None:
+        """Release the masks of lights that no longer use planar shadows.
+
+        Parameters
+        ----------
+        plans : list of LightPlan
+            This frame's plans.
+        """
+        alive = {vtk_id(p.light) for p in plans if p.technique == self.name}
+        for key in set(self._lights) - alive:
+            self._lights.pop(key).mask.release()
+
+    def release(self) -> None:
+        """Release every mask, the framebuffer and the program."""
+        self.keep_only([])
+        self._pass.release()
