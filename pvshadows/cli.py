@@ -10,10 +10,12 @@ from pathlib import Path
 
 
 def _prefer_egl_without_display() -> None:
-    """Open EGL windows directly when there is no display, instead of trying X first."""
-    if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
-        if sys.platform.startswith("linux"):
-            os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+    """Open EGL windows directly when there is no X display, instead of trying X first.
+
+    VTK has no Wayland window: without ``DISPLAY`` (XWayland) it falls back to EGL anyway.
+    """
+    if not os.environ.get("DISPLAY") and sys.platform.startswith("linux"):
+        os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
 
 
 def _size(text: str) -> tuple[int, int]:
@@ -39,7 +41,11 @@ def _demo(args: argparse.Namespace) -> int:
 def _info(args: argparse.Namespace) -> int:
     from pvshadows.info import capabilities
 
-    print(capabilities())
+    try:
+        print(capabilities(onscreen=args.onscreen))
+    except RuntimeError as error:
+        print(f"pvshadows info: {error}", file=sys.stderr)
+        return 1
     return 0
 
 
@@ -103,7 +109,14 @@ def parser() -> argparse.ArgumentParser:
     demo.add_argument("--out", default="shadows.png", help="PNG to write (default shadows.png)")
     demo.add_argument("--size", type=_size, default=(1024, 768), help="window size, e.g. 800x600")
     demo.set_defaults(run=_demo)
-    info = commands.add_parser("info", help="what this OpenGL context offers pvshadows")
+    info = commands.add_parser(
+        "info", help="what an OpenGL window offers pvshadows, and which techniques run in it"
+    )
+    info.add_argument(
+        "--onscreen",
+        action="store_true",
+        help="ask an on-screen window (needs a display) instead of an off-screen one",
+    )
     info.set_defaults(run=_info)
     bench = commands.add_parser("bench", help="error and time ratio of every technique and setting")
     bench.add_argument("--out", required=True, help="folder for bench.csv, bench.md, frontier.png")

@@ -10,6 +10,7 @@ import pyvista as pv
 import vtk
 
 from pvshadows.frame import RendererShadows
+from pvshadows.gl.binding import check_window
 from pvshadows.lights import light_kind, light_pose
 from pvshadows.measure import Measurement, compare
 from pvshadows.planes import require_plane
@@ -103,6 +104,9 @@ class ShadowsComponent:
         ValueError, TypeError
             For a bad setting (naming it and what is allowed), a light that
             is not in this plotter, or a mesh that cannot cast shadows.
+        pvshadows.gl.binding.OpenGLPlatformError
+            If PyOpenGL was imported for a platform that cannot reach this
+            plotter's window (``pvshadows info`` says the same).
 
         Examples
         --------
@@ -119,6 +123,8 @@ class ShadowsComponent:
             chosen = {vtk_id(self._check_light(light, "lights")) for light in lights}
         self._check_scene()
         self._check_volumes(defaults)
+        if self._plotter.render_window is not None:
+            check_window(self._plotter.render_window)
         self._defaults, self._lights = defaults, chosen
         if not self._renderers:
             self._renderers = [

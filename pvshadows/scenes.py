@@ -19,7 +19,7 @@ class StandardScene:
     Attributes
     ----------
     plotter : pyvista.Plotter
-        Off-screen plotter, lit only by ``light``.
+        The plotter (off screen unless asked otherwise), lit only by ``light``.
     light : pyvista.Light
         The light (point, spot or directional).
     ground, box, sphere, cylinder : pyvista.Actor
@@ -66,6 +66,7 @@ def standard_scene(
     window_size: tuple[int, int] = (800, 600),
     camera: tuple = STANDARD_CAMERA,
     ambient: float = 0.15,
+    off_screen: bool = True,
 ) -> StandardScene:
     """Build the standard scene: ground, floating box, sphere, cylinder and a point light.
 
@@ -94,6 +95,8 @@ def standard_scene(
         Position, focal point and view up of the unit scene's camera.
     ambient : float, default: 0.15
         Ambient coefficient of every surface, so shadows are not black.
+    off_screen : bool, default: True
+        ``False`` for an on-screen window (shown with ``plotter.show()``).
 
     Returns
     -------
@@ -114,7 +117,7 @@ def standard_scene(
         mesh.points = np.asarray(mesh.points, dtype=np.float64) * scale + offset
         return mesh
 
-    plotter = pv.Plotter(off_screen=True, window_size=list(window_size), lighting="none")
+    plotter = pv.Plotter(off_screen=off_screen, window_size=list(window_size), lighting="none")
     plotter.set_background("white")
     style = {"ambient": ambient, "diffuse": 0.85, "specular": 0.2, "smooth_shading": True}
     ground = plotter.add_mesh(
