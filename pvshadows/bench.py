@@ -218,8 +218,8 @@ def all_cases() -> list[BenchCase]:
     Examples
     --------
     >>> from pvshadows.bench import all_cases
-    >>> sorted({(c.technique, c.light) for c in all_cases()})[0]
-    ('cubemap', 'point')
+    >>> {"cubemap", "map", "volume", "vtk", "auto"} <= {c.technique for c in all_cases()}
+    True
     """
     cases = cubemap_cases()
     cases += [c for c in filter_cases("cubemap", "point", [1024]) if c.soft]
