@@ -156,8 +156,11 @@ class ShadowsComponent:
         light : pyvista.Light
             A light of this plotter.
         **settings
-            ``technique``, ``resolution``, ``filter``, ``pcf_taps``,
-            ``passes``, ``bias``, ``slope_bias``, ``normal_offset``.
+            Any setting of :class:`pvshadows.settings.ShadowSettings`
+            (``technique``, ``resolution``, ``filter``, ``pcf_taps``,
+            ``samples``, ``light_size``, ``passes``, the biases, ``zmode``,
+            ``extrude``, ``on_open``, ...); ``quality`` starts from that
+            preset instead of the light's current settings.
 
         Raises
         ------
