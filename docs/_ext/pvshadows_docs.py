@@ -64,14 +64,18 @@ def _context() -> str:
 
 def run_bench(out: Path, mode: str) -> str:
     """Run the bench into ``out`` (or keep the last one) and return a sentence saying how."""
+    record = out / "measured.txt"
     if mode == "reuse" and (out / "bench.csv").exists() and (out / "bench.md").exists():
-        return "kept from an earlier build of these docs (``PVSHADOWS_DOCS_BENCH=reuse``)"
+        earlier = record.read_text(encoding="utf-8").strip() if record.exists() else "measured"
+        return f"{earlier} (kept for this build: ``PVSHADOWS_DOCS_BENCH=reuse``)"
     quick = mode != "full"
     command = [sys.executable, "-m", "pvshadows", "bench", "--out", str(out)]
     seconds = _run(command + (["--quick"] if quick else []), "bench")
     which = "``pvshadows bench --quick``" if quick else "``pvshadows bench``"
     when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
-    return f"measured by {which} while these docs were built, {when}, in {seconds / 60:.1f} min"
+    how = f"measured by {which} during a build of these docs, {when}, in {seconds / 60:.1f} min"
+    record.write_text(how + "\n", encoding="utf-8")
+    return how
 
 
 # -- bench.csv and bench.md as reST ------------------------------------------------------------
