@@ -10,6 +10,7 @@ map of the same scene is compared on the same frame.
 """
 
 # %%
+# sphinx_gallery_thumbnail_number = 2
 import pyvista as pv
 
 import pvshadows  # noqa: F401  (registers pl.shadows; installing pvshadows also does)

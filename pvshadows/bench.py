@@ -758,9 +758,10 @@ def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], label
             textcoords="offset points",
         )
     front = pareto_front(rows, error)
+    # The frontier runs on to the dearest case, so a single exact and cheap case still shows it.
     axes.step(
-        [r.ratio_moving for r in front],
-        [error(r) for r in front],
+        [r.ratio_moving for r in front] + [max(r.ratio_moving for r in rows)],
+        [error(r) for r in front] + [error(front[-1])],
         where="post",
         color="0.5",
         linewidth=1,
@@ -772,7 +773,14 @@ def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], label
     for kind, marker in markers.items():
         if any(f"filter={kind}" in r.setting for r in rows):
             axes.scatter([], [], color="0.3", marker=marker, label=f"filter {kind}")
-    axes.set_yscale("log")
+    positive = [error(r) for r in rows if error(r) > 0]
+    if len(positive) < len(rows):
+        # Exact cases (shadow volumes: no pixel wrong) stay on the plot: linear near zero.
+        linear_below = 10 ** (np.floor(np.log10(min(positive))) - 1) if positive else 1.0
+        axes.set_yscale("symlog", linthresh=linear_below)
+        axes.set_ylim(bottom=0.0)
+    else:
+        axes.set_yscale("log")
     axes.set_xlabel("frame time / plain frame time (light moving)")
     axes.set_ylabel(label)
     axes.grid(alpha=0.3, which="both")

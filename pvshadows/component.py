@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
+from dataclasses import replace
 from numbers import Integral, Real
 
 import numpy as np
@@ -165,11 +166,11 @@ class ShadowsComponent:
         light : pyvista.Light
             A light of this plotter.
         **settings
-            Any field of :class:`pvshadows.settings.ShadowSettings`:
-            ``technique``, ``quality`` (starts from that preset), ``resolution``,
-            ``filter``, ``pcf_taps``, ``samples``, ``filter_radius``,
-            ``light_size``, ``passes``, ``bias``, ``slope_bias``,
-            ``normal_offset``, ``zmode``, ``extrude``, ``on_open``.
+            Any setting of :class:`pvshadows.settings.ShadowSettings`
+            (``technique``, ``resolution``, ``filter``, ``pcf_taps``,
+            ``samples``, ``light_size``, ``passes``, the biases, ``zmode``,
+            ``extrude``, ``on_open``, ...); ``quality`` starts from that
+            preset instead of the light's current settings.
 
         Raises
         ------
@@ -329,11 +330,16 @@ class ShadowsComponent:
         Returns
         -------
         pvshadows.report.FrameReport
-            Printable; ``passes_run`` counts the passes that ran.
+            Printable; ``passes_run`` counts the passes that ran. With
+            subplots, each light says which subplot it lights.
         """
         report = FrameReport()
-        for renderer in self._renderers:
-            report.lights.extend(renderer.last_frame.lights)
+        several = len(self._renderers) > 1
+        for number, renderer in enumerate(self._renderers):
+            for light in renderer.last_frame.lights:
+                report.lights.append(
+                    replace(light, subplot=self._subplot(number)) if several else light
+                )
         return report
 
     def visibility(self, light: vtk.vtkLight | None = None) -> np.ndarray:
@@ -419,6 +425,10 @@ class ShadowsComponent:
         if self._lights is not None and key not in self._lights:
             return None
         return self._per_light.get(key, self._defaults)
+
+    def _subplot(self, number: int) -> tuple[int, ...]:
+        where = self._plotter.renderers.index_to_loc(number)
+        return tuple(int(value) for value in np.atleast_1d(where))
 
     def _actor_name(self, actor: vtk.vtkActor) -> str:
         key = vtk_id(actor)

@@ -50,6 +50,9 @@ class LightReport:
         Its passes in order.
     notes : list of str
         Decisions in words (why a light casts nothing, what was reused).
+    subplot : tuple of int or None
+        The subplot of the light's renderer, as ``pl.subplot`` takes it,
+        when the plotter has several; ``None`` when it has one.
     """
 
     index: int
@@ -57,6 +60,7 @@ class LightReport:
     technique: str | None
     passes: list[PassReport] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    subplot: tuple[int, ...] | None = None
 
     @property
     def passes_run(self) -> int:
@@ -65,6 +69,8 @@ class LightReport:
 
     def __str__(self) -> str:
         head = f"light {self.index} ({self.kind}): {self.technique or 'no shadows'}"
+        if self.subplot is not None:
+            head = f"subplot {self.subplot}, {head}"
         lines = [head] + [f"  {p}" for p in self.passes] + [f"  - {n}" for n in self.notes]
         return "\n".join(lines)
 

@@ -239,3 +239,41 @@ def test_close_releases_the_component(scene):
     pl.screenshot(return_img=True)
     pl.close()
     assert not pl.shadows.enabled
+
+
+def test_subplots_each_with_its_own_light_and_technique():
+    """Each subplot is a renderer with its own lights: each measures like a plotter of its own."""
+
+    def build(pl, light):
+        pl.add_mesh(pv.Plane(i_size=9, j_size=9), color="white")
+        pl.add_mesh(pv.Sphere(radius=0.55, center=(-1.2, 0.3, 1.5)), color="white")
+        pl.add_light(light, only_active=True)
+        pl.camera_position = [(0.0, -8.0, 8.0), (-0.6, 1.0, 0.3), (0, 0, 1)]
+
+    def lights():
+        sun = pv.Light(position=(3, -2, 5), focal_point=(0, 0, 0))
+        return [point_light((2.2, -1.2, 4.0)), sun]
+
+    techniques = ["cubemap", "map"]
+    pl = pv.Plotter(off_screen=True, shape=(1, 2), window_size=(640, 300), lighting="none")
+    for column, light in enumerate(lights_in_subplots := lights()):
+        pl.subplot(0, column)
+        build(pl, light)
+    pl.shadows.enable(filter="hard")
+    for light, technique in zip(lights_in_subplots, techniques, strict=True):
+        pl.shadows.configure(light, technique=technique)
+    draw(pl)
+    text = str(pl.shadows.last_frame)
+    assert "subplot (0, 0), light 0 (point): cubemap" in text
+    assert "subplot (0, 1), light 0 (directional): map" in text
+    for column, technique in enumerate(techniques):
+        alone = pv.Plotter(off_screen=True, window_size=(320, 300), lighting="none")
+        light = lights()[column]
+        build(alone, light)
+        alone.shadows.enable(filter="hard", technique=technique)
+        expected = alone.shadows.measure(light)
+        measured = pl.shadows.measure(lights_in_subplots[column])
+        assert measured.lit_pixels == expected.lit_pixels
+        assert abs(measured.misclassified - expected.misclassified) <= 1e-3
+        assert expected.misclassified <= 0.01
+        alone.close()
