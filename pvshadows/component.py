@@ -79,9 +79,12 @@ class ShadowsComponent:
         Parameters
         ----------
         technique : str, default: "auto"
-            ``"auto"`` lets pvshadows choose per light (``"cubemap"`` for
-            point lights), or name one technique for all lights
-            (``"volume"``: stencil shadow volumes, pixel-exact hard shadows
+            ``"auto"`` lets pvshadows choose per light and frame
+            (``"cubemap"`` for point lights, ``"map"`` for spot and
+            directional lights, ``"volume"`` for ``quality="exact"``,
+            ``"planar"`` when the only receiver is one plane), or name one
+            technique for all lights it can serve (``"cubemap"``, ``"map"``,
+            ``"volume"``: stencil shadow volumes, pixel-exact hard shadows
             from every kind of light; ``"planar"``: casters flattened onto
             one receiving plane, the cheapest, every kind of light, but
             objects do not shadow each other).
