@@ -16,6 +16,7 @@ shadow pass runs, and with a static scene, where maps are reused. VTK's own
 from __future__ import annotations
 
 import csv
+import itertools
 import statistics
 import time
 from collections.abc import Callable, Iterable
@@ -739,7 +740,7 @@ def pareto_front(rows: list[BenchRow], error: Callable[[BenchRow], float]) -> li
 def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], label: str) -> None:
     markers = {"hard": "s", "pcf": "o", "random": "^", "pcss": "D"}
     groups = list(dict.fromkeys(f"{r.technique} ({r.light})" for r in rows))
-    colours = dict(zip(groups, plt_colours(), strict=False))
+    colours = dict(zip(groups, itertools.cycle(plt_colours()), strict=False))
     for row in rows:
         kind = next((f for f in markers if f"filter={f}" in row.setting), None)
         axes.scatter(
@@ -788,10 +789,10 @@ def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], label
 
 
 def plt_colours() -> list:
-    """Return matplotlib's ten-colour cycle."""
+    """Return matplotlib's twenty-colour qualitative palette (repeated if there are more groups)."""
     import matplotlib.pyplot as plt
 
-    return list(plt.cm.tab10.colors)
+    return list(plt.cm.tab20.colors)
 
 
 def plot_frontier(rows: list[BenchRow], path: Path) -> None:

@@ -85,3 +85,18 @@ def test_bad_command_line_is_refused():
     )
     assert result.returncode == 2
     assert "size must look like 800x600" in result.stderr
+
+
+def test_frontier_plot_takes_every_technique_and_light(tmp_path):
+    from pvshadows.bench import BenchRow, plot_frontier
+
+    rows = [
+        BenchRow(technique, light, "filter=hard", 0.001 * (i + 1), 0.01, "hard", 1.0 + i, 1.0, 10)
+        for i, (technique, light) in enumerate(
+            (t, lt)
+            for t in ("cubemap", "map", "volume", "planar", "auto", "vtk", "x")
+            for lt in ("point", "spot")
+        )
+    ]
+    plot_frontier(rows, tmp_path / "frontier.png")
+    assert (tmp_path / "frontier.png").stat().st_size > 10_000
