@@ -10,6 +10,7 @@ from __future__ import annotations
 import vtk
 
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.framebuffer import finish_binding
 from pvshadows.gl.mask_target import MaskTexture
 
 
@@ -46,13 +47,7 @@ class ColourTarget:
         gl.glFramebufferTexture2D(
             gl.GL_FRAMEBUFFER, gl.GL_COLOR_ATTACHMENT0, gl.GL_TEXTURE_2D, mask.handle, 0
         )
-        gl.glDrawBuffer(gl.GL_COLOR_ATTACHMENT0)
-        gl.glReadBuffer(gl.GL_COLOR_ATTACHMENT0)
-        status = gl.glCheckFramebufferStatus(gl.GL_FRAMEBUFFER)
-        if status != gl.GL_FRAMEBUFFER_COMPLETE:
-            msg = f"the planar-shadow framebuffer is incomplete (status 0x{int(status):x})"
-            raise RuntimeError(msg)
-        state.vtkglViewport(0, 0, *mask.size)
+        finish_binding(gl, self._window, gl.GL_COLOR_ATTACHMENT0, mask.size, "planar-shadow")
 
     def release(self) -> None:
         """Delete the framebuffer (the window's context must be current)."""

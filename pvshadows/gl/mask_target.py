@@ -19,6 +19,7 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.framebuffer import finish_binding
 
 
 class MaskTexture:
@@ -143,13 +144,7 @@ class VolumeTarget:
             0,
         )
         buffer = gl.GL_COLOR_ATTACHMENT0 if mask is not None else gl.GL_NONE
-        gl.glDrawBuffer(buffer)
-        gl.glReadBuffer(buffer)
-        status = gl.glCheckFramebufferStatus(gl.GL_FRAMEBUFFER)
-        if status != gl.GL_FRAMEBUFFER_COMPLETE:
-            msg = f"the shadow-volume framebuffer is incomplete (status 0x{int(status):x})"
-            raise RuntimeError(msg)
-        state.vtkglViewport(0, 0, *self.size)
+        finish_binding(gl, self._window, buffer, self.size, "shadow-volume")
 
     def release(self) -> None:
         """Delete the framebuffer and renderbuffer (the window's context must be current)."""

@@ -13,6 +13,7 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.framebuffer import finish_binding
 
 
 class DepthTexture:
@@ -97,13 +98,8 @@ class DepthTexture:
         state = self._window.GetState()
         state.vtkglBindFramebuffer(gl.GL_FRAMEBUFFER, self._framebuffer)
         self._attach(face)
-        gl.glDrawBuffer(gl.GL_NONE)
-        gl.glReadBuffer(gl.GL_NONE)
-        status = gl.glCheckFramebufferStatus(gl.GL_FRAMEBUFFER)
-        if status != gl.GL_FRAMEBUFFER_COMPLETE:
-            msg = f"the shadow-map framebuffer is incomplete (status 0x{int(status):x})"
-            raise RuntimeError(msg)
-        state.vtkglViewport(0, 0, self.resolution, self.resolution)
+        size = (self.resolution, self.resolution)
+        finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
 
     def release(self) -> None:
         """Delete the texture and framebuffer (the window's context must be current)."""
