@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // Depth-cube pass, geometry stage: one draw fills all six faces. Each
 // triangle is sent to every face whose frustum it can touch, on the layer
 // (gl_Layer) of that face; faces left out of `faceMask` hold no caster and

@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // Depth-cube pass, vertex stage. Positions arrive in the caster's model
 // coordinates (shifted to its centre); `modelToLight` takes them to world
 // axes with the light at the origin, computed in double precision on the CPU.

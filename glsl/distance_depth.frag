@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // Shadow-map pass, fragment stage. The depth written is linear: the distance
 // to the light over `far` (cube and spot maps), or with DEPTH_ALONG_Z the
 // depth along a directional light from the map's near plane over the depth

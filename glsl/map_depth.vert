@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // 2D shadow-map pass, vertex stage. Positions arrive in the caster's model
 // coordinates (shifted to its centre); `modelToLight` takes them to the
 // light's space and `lightToClip` projects them onto the map (perspective for

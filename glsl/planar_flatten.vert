@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // Planar shadows: a caster's triangles flattened onto the receiving plane
 // along the lines to the light, drawn with the camera's projection into the
 // light's screen-space mask.

@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // Planar shadows: every flattened caster writes "in shadow" (0) into the
 // light's mask, which was cleared to "lit" (1). Writing the same value
 // however many triangles cover a pixel keeps the shadow the same darkness

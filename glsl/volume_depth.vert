@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // Shadow volumes, depth pre-pass: every visible actor's triangles with the
 // camera's projection, so the stencil pass can tell which parts of each
 // volume lie in front of or behind the surface seen in each pixel.

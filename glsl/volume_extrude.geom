@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // Shadow volumes extruded on the GPU (extrude="gpu"), geometry stage.
 //
 // Input: GL_TRIANGLES_ADJACENCY from pvshadows' own index buffer (built with
@@ -16,6 +16,16 @@
 // Whether a face faces the light is decided from its smallest-index corner,
 // with `precise` arithmetic, so the two triangles of an edge always agree on
 // each other's facing and the silhouette has no cracks or double quads.
+// `precise` comes with ARB_gpu_shader5 (core in GL 4.0); a driver without it
+// compiles the same arithmetic without it, where in rare near-grazing cases
+// the two faces of an edge may disagree on their facing.
+
+#extension GL_ARB_gpu_shader5 : enable
+#ifdef GL_ARB_gpu_shader5
+#define PVS_PRECISE precise
+#else
+#define PVS_PRECISE
+#endif
 
 layout(triangles_adjacency) in;
 layout(triangle_strip, max_vertices = 18) out;

@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // Shadow volumes extruded on the GPU (extrude="gpu"), vertex stage: hands the
 // model-space position and the vertex's index to the geometry shader, which
 // needs the index to test each face from the same corner in every invocation.

@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // Shadow volumes, mask pass: one triangle that covers the whole viewport,
 // made from gl_VertexID alone (no vertex buffer).
 

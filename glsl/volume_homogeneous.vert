@@ -1,4 +1,4 @@
-//VTK::System::Dec
+#version 150
 // Shadow volumes built on the CPU (extrude="cpu"): positions are homogeneous,
 // w = 1 on the caster and w = 0 at infinity, in the caster's model frame.
 // The light cap is drawn with a tiny clip-space depth offset (`capDepthOffset`,

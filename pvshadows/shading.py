@@ -33,13 +33,6 @@ _PROBE_ANCHOR = "//VTK::Picking::Impl"
 _FACET_NORMAL = (
     "\n  vec3 pvsFacetVC = cross(dFdx(vertexVC.xyz), dFdy(vertexVC.xyz));\n  float pvsProbe = 0.0;"
 )
-_NORMAL_CHOICE = """
-vec3 pvsGeometricNormal(vec3 facet, vec3 shadingNormal)
-{
-  float size = dot(facet, facet);
-  return size > 0.0 && !isinf(size) ? normalize(facet) : shadingNormal;
-}
-"""
 
 
 @dataclass(frozen=True)
@@ -174,7 +167,7 @@ def receiver_replacements(
     defines = dict.fromkeys(define for light in lights for define in light.defines)
     needs = dict.fromkeys(need for light in lights for need in light.needs)
     functions = "".join(f"#define {name}\n" for name in defines)
-    functions += _NORMAL_CHOICE + shadow_functions(needs)
+    functions += glsl_source("receiver_normal.glsl") + shadow_functions(needs)
     functions += "".join(glsl_source(source) for source in sources)
     edits = [
         (_MAIN, f"{functions}\n{_MAIN}"),

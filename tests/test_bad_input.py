@@ -145,12 +145,12 @@ def test_frames_leave_no_gl_error_and_print_nothing(scene, capfd, caplog):
 
 
 def test_shader_compile_errors_carry_the_log(scene):
-    from pvshadows.gl.programs import ShaderCompileError, compile_program, with_defines
+    from pvshadows.gl.programs import ShaderCompileError, compile_program
 
     draw(scene.plotter)
     with pytest.raises(ShaderCompileError, match=r"vertex shader:\n.*error"):
         compile_program(
             scene.plotter.ren_win,
-            with_defines("//VTK::System::Dec\nvoid main() { gl_Position = vec4(1.0) }"),
-            with_defines("//VTK::System::Dec\nout vec4 c;\nvoid main() { c = vec4(1.0); }"),
+            "#version 150\nvoid main() { gl_Position = vec4(1.0) }",
+            "#version 150\nout vec4 c;\nvoid main() { c = vec4(1.0); }",
         )

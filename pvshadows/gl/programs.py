@@ -15,9 +15,6 @@ from pathlib import Path
 
 import vtk
 
-#: The first line of every program pvshadows compiles itself.
-GLSL_VERSION = "#version 150"
-
 
 class ShaderCompileError(RuntimeError):
     """A shader did not compile or link; the message holds the driver's log."""
@@ -68,12 +65,12 @@ def glsl_source(name: str) -> str:
 
 
 def with_defines(source: str, defines: dict[str, object] | None = None) -> str:
-    r"""Put the version line and ``#define`` lines in front of a stage's source.
+    r"""Put ``#define`` lines right after a stage's ``#version`` line.
 
     Parameters
     ----------
     source : str
-        Source starting with ``//VTK::System::Dec``.
+        Stage source whose first line is its ``#version`` directive.
     defines : dict, optional
         Macro names and values; ``None`` or ``True`` values define the name
         alone.
@@ -86,17 +83,65 @@ def with_defines(source: str, defines: dict[str, object] | None = None) -> str:
     Examples
     --------
     >>> from pvshadows.gl.programs import with_defines
-    >>> print(with_defines("//VTK::System::Dec\nvoid main() {}", {"TAPS": 4}))
+    >>> print(with_defines("#version 150\nvoid main() {}", {"TAPS": 4, "SIX_PASSES": True}))
     #version 150
     #define TAPS 4
+    #define SIX_PASSES
     void main() {}
     """
-    lines = [GLSL_VERSION]
+    version, _, body = source.partition("\n")
+    lines = [version]
     for name, value in (defines or {}).items():
         lines.append(
             f"#define {name}" if value is None or value is True else f"#define {name} {value}"
         )
-    return source.replace("//VTK::System::Dec", "\n".join(lines), 1)
+    lines.append(body)
+    return "\n".join(lines)
+
+
+def compile_files(
+    window: vtk.vtkOpenGLRenderWindow,
+    vertex: str,
+    fragment: str,
+    geometry: str = "",
+    defines: dict[str, object] | None = None,
+) -> vtk.vtkShaderProgram:
+    """Compile, link and bind a program from stage files of ``glsl/``.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose shader cache compiles and binds the program.
+    vertex, fragment, geometry : str
+        File names of the stages; ``geometry`` may be empty.
+    defines : dict, optional
+        Macros given to every stage (see :func:`with_defines`).
+
+    Returns
+    -------
+    vtk.vtkShaderProgram
+        The compiled program, bound.
+
+    Raises
+    ------
+    ShaderCompileError
+        With each failing stage's log.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.gl.programs import compile_files
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> pl.ren_win.Render()
+    >>> program = compile_files(pl.ren_win, "map_depth.vert", "distance_depth.frag")
+    >>> bool(program.GetCompiled())
+    True
+    """
+    sources = [
+        with_defines(glsl_source(name), defines) if name else ""
+        for name in (vertex, fragment, geometry)
+    ]
+    return compile_program(window, *sources)
 
 
 def compile_program(
@@ -112,8 +157,8 @@ def compile_program(
     window : vtk.vtkOpenGLRenderWindow
         The window whose shader cache compiles and binds the program.
     vertex, fragment, geometry : str
-        Complete stage sources (see :func:`with_defines`); ``geometry`` may
-        be empty.
+        Complete stage sources, each starting with its ``#version`` line;
+        ``geometry`` may be empty.
 
     Returns
     -------

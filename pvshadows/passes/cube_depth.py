@@ -8,7 +8,7 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.buffers import TriangleBuffers
-from pvshadows.gl.programs import ProgramCache, compile_program, glsl_source, with_defines
+from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.timing import PassTimer
 from pvshadows.passes.gl_state import cull_faces, depth_only_state
@@ -78,23 +78,13 @@ class CubeDepthPass:
         self._programs = ProgramCache(window)
 
     def _program(self, passes: str) -> vtk.vtkShaderProgram:
-        fragment = with_defines(glsl_source("distance_depth.frag"))
         if passes == "single":
-            return self._programs.get(
-                passes,
-                lambda: compile_program(
-                    self._window,
-                    with_defines(glsl_source("cube_depth.vert")),
-                    fragment,
-                    with_defines(glsl_source("cube_depth.geom")),
-                ),
-            )
+            stages = ("cube_depth.vert", "distance_depth.frag", "cube_depth.geom")
+            return self._programs.get(passes, lambda: compile_files(self._window, *stages))
         return self._programs.get(
             passes,
-            lambda: compile_program(
-                self._window,
-                with_defines(glsl_source("cube_depth.vert"), {"SIX_PASSES": True}),
-                fragment,
+            lambda: compile_files(
+                self._window, "cube_depth.vert", "distance_depth.frag", defines={"SIX_PASSES": True}
             ),
         )
 
@@ -135,7 +125,7 @@ class CubeDepthPass:
         program = self._program(passes)
         records: list[PassReport] = []
         with depth_only_state(self._window) as gl:
-            self._window.GetShaderCache().ReadyShaderProgram(program)
+            bind_program(self._window, program)
             program.SetUniformf("invFar", 1.0 / far)
             if passes == "single":
                 record = PassReport(

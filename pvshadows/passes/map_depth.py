@@ -8,7 +8,7 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.buffers import TriangleBuffers
-from pvshadows.gl.programs import ProgramCache, compile_program, glsl_source, with_defines
+from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthMap
 from pvshadows.gl.timing import PassTimer
 from pvshadows.passes.gl_state import cull_faces, depth_only_state
@@ -52,10 +52,8 @@ class MapDepthPass:
         defines = {"DEPTH_ALONG_Z": True} if along_z else {}
         return self._programs.get(
             along_z,
-            lambda: compile_program(
-                self._window,
-                with_defines(glsl_source("map_depth.vert")),
-                with_defines(glsl_source("distance_depth.frag"), defines),
+            lambda: compile_files(
+                self._window, "map_depth.vert", "distance_depth.frag", defines=defines
             ),
         )
 
@@ -99,7 +97,7 @@ class MapDepthPass:
         with depth_only_state(self._window) as gl, timer.measure(report):
             depth.bind_as_target()
             gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
-            self._window.GetShaderCache().ReadyShaderProgram(program)
+            bind_program(self._window, program)
             program.SetUniformf("invFar", 1.0 / depth_range)
             program.SetUniformMatrix4x4v("lightToClip", 1, column_major(light_to_clip))
             for caster in casters:

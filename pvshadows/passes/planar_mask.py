@@ -33,7 +33,7 @@ from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.buffers import TriangleBuffers
 from pvshadows.gl.colour_target import ColourTarget
 from pvshadows.gl.mask_target import MaskTexture
-from pvshadows.gl.programs import compile_program, glsl_source, with_defines
+from pvshadows.gl.programs import bind_program, compile_files
 from pvshadows.transforms import column_major
 
 
@@ -77,12 +77,8 @@ class PlanarMaskPass:
 
     def _bind(self) -> vtk.vtkShaderProgram:
         if self._program is None:
-            self._program = compile_program(
-                self._window,
-                with_defines(glsl_source("planar_flatten.vert")),
-                with_defines(glsl_source("planar_mask.frag")),
-            )
-        self._window.GetShaderCache().ReadyShaderProgram(self._program)
+            self._program = compile_files(self._window, "planar_flatten.vert", "planar_mask.frag")
+        bind_program(self._window, self._program)
         return self._program
 
     @contextmanager

@@ -27,14 +27,7 @@ import vtk
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.buffers import EmptyArray, IndexedBuffers, TriangleBuffers
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
-from pvshadows.gl.programs import (
-    GLSL_VERSION,
-    ProgramCache,
-    ShaderCompileError,
-    compile_program,
-    glsl_source,
-    with_defines,
-)
+from pvshadows.gl.programs import ProgramCache, ShaderCompileError, bind_program, compile_files
 from pvshadows.gl.timing import PassTimer
 from pvshadows.report import PassReport
 from pvshadows.transforms import column_major
@@ -43,6 +36,15 @@ from pvshadows.transforms import column_major
 #: surface they came from and must lose the depth test against it. About
 #: eight steps of a 24-bit depth buffer.
 CAP_DEPTH_OFFSET = 1.0e-6
+
+#: The stage files of each program: the depth pre-pass, volumes extruded on the
+#: GPU (geometry shader) or built on the CPU, and the full-screen mask pass.
+_STAGES = {
+    "depth": ("volume_depth.vert", "volume_colour.frag"),
+    "gpu": ("volume_extrude.vert", "volume_colour.frag", "volume_extrude.geom"),
+    "cpu": ("volume_homogeneous.vert", "volume_colour.frag"),
+    "fullscreen": ("volume_fullscreen.vert", "volume_colour.frag"),
+}
 
 
 @dataclass
@@ -103,43 +105,12 @@ class VolumePasses:
         self._gl = opengl_for(window)
         self._programs = ProgramCache(window)
         self._empty: EmptyArray | None = None
-        self.precise = True
 
     # -- programs ---------------------------------------------------------------------------
 
     def _program(self, name: str) -> vtk.vtkShaderProgram:
-        if name == "gpu":
-            return self._programs.get(name, self._extrusion_program)
-        vertex = {
-            "depth": "volume_depth.vert",
-            "cpu": "volume_homogeneous.vert",
-            "fullscreen": "volume_fullscreen.vert",
-        }[name]
-        return self._programs.get(
-            name,
-            lambda: compile_program(
-                self._window,
-                with_defines(glsl_source(vertex)),
-                with_defines(glsl_source("volume_colour.frag")),
-            ),
-        )
-
-    def _extrusion_program(self) -> vtk.vtkShaderProgram:
-        stages = ("volume_extrude.vert", "volume_colour.frag", "volume_extrude.geom")
-        try:
-            sources = [
-                with_defines(glsl_source(s), {"PVS_PRECISE": "precise"}).replace(
-                    GLSL_VERSION, "#version 400", 1
-                )
-                for s in stages
-            ]
-            return compile_program(self._window, *sources)
-        except ShaderCompileError:
-            # GLSL 4.00 missing: without `precise` the two faces of an edge may,
-            # in rare near-grazing cases, disagree on their facing.
-            self.precise = False
-            sources = [with_defines(glsl_source(s), {"PVS_PRECISE": ""}) for s in stages]
-            return compile_program(self._window, *sources)
+        stages = _STAGES[name]
+        return self._programs.get(name, lambda: compile_files(self._window, *stages))
 
     def can_extrude_on_gpu(self) -> bool:
         """Return whether the extruding geometry shader compiles in this context.
@@ -158,7 +129,7 @@ class VolumePasses:
 
     def _bind(self, name: str) -> vtk.vtkShaderProgram:
         program = self._program(name)
-        self._window.GetShaderCache().ReadyShaderProgram(program)
+        bind_program(self._window, program)
         return program
 
     def _empty_array(self) -> EmptyArray:
