@@ -31,7 +31,6 @@ import vtk
 
 from pvshadows.scene import ActorTriangles
 from pvshadows.snapshot import ActorState
-from pvshadows.transforms import translation
 
 #: Largest distance of a plane's points from their best-fitting plane, as a
 #: share of the diagonal of its bounds (besides the rounding of its coordinates).
@@ -241,7 +240,7 @@ def actor_plane(state: ActorState) -> np.ndarray | None:
     fit = model_fit(state.actor, state.triangles)
     if not fit.planar:
         return None
-    return world_plane(fit.plane, state.matrix @ translation(state.triangles.center))
+    return world_plane(fit.plane, state.model_matrix())
 
 
 def require_plane(actor: vtk.vtkActor, triangles: ActorTriangles | None, name: str) -> PlaneFit:

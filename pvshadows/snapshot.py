@@ -13,6 +13,7 @@ import numpy as np
 import vtk
 
 from pvshadows.scene import ActorTriangles, actor_matrix, read_triangles, vtk_id, world_bounds
+from pvshadows.transforms import translation
 
 
 @dataclass
@@ -46,6 +47,10 @@ class ActorState:
     caster: bool
     receiver: bool
     plane: bool = False
+
+    def model_matrix(self) -> np.ndarray:
+        """Return the model-to-world matrix of :attr:`triangles`' centred points (float64)."""
+        return self.matrix @ translation(self.triangles.center)
 
     def key(self) -> tuple:
         """Return a value that changes when the actor's shadow-casting shape changes."""

@@ -105,6 +105,7 @@ class VolumePasses:
         self._gl = opengl_for(window)
         self._programs = ProgramCache(window)
         self._empty: EmptyArray | None = None
+        self._extrudes_on_gpu: bool | None = None
 
     # -- programs ---------------------------------------------------------------------------
 
@@ -119,13 +120,16 @@ class VolumePasses:
         -------
         bool
             ``False`` when the driver refuses it (the technique then extrudes
-            on the CPU).
+            on the CPU). Tried once per window.
         """
-        try:
-            self._program("gpu")
-        except ShaderCompileError:
-            return False
-        return True
+        if self._extrudes_on_gpu is None:
+            try:
+                self._program("gpu")
+            except ShaderCompileError:
+                self._extrudes_on_gpu = False
+            else:
+                self._extrudes_on_gpu = True
+        return self._extrudes_on_gpu
 
     def _bind(self, name: str) -> vtk.vtkShaderProgram:
         program = self._program(name)

@@ -127,11 +127,10 @@ class CubemapTechnique(PerLightMaps):
             ]
         casters = []
         for caster in plan.casters:
-            shift = translation(caster.triangles.center)
             casters.append(
                 CubeCaster(
                     context.buffers.get(caster),
-                    translation(-position) @ caster.matrix @ shift,
+                    translation(-position) @ caster.model_matrix(),
                     caster_face_mask(caster.bounds - position),
                     face_to_cull(caster, settings),
                 )

@@ -181,7 +181,7 @@ class MapTechnique(PerLightMaps):
         drawn = [
             MapCaster(
                 context.buffers.get(caster),
-                state.world_to_light @ caster.matrix @ translation(caster.triangles.center),
+                state.world_to_light @ caster.model_matrix(),
                 face_to_cull(caster, settings),
             )
             for caster in casters

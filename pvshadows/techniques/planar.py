@@ -201,7 +201,7 @@ def flat_draws(
         FlatDraw(
             context.buffers.get(caster),
             *caster_matrices(
-                caster.matrix @ translation(caster.triangles.center),
+                caster.model_matrix(),
                 plane,
                 light,
                 projection,

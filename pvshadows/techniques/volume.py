@@ -55,7 +55,7 @@ from pvshadows.shading import LightShading
 from pvshadows.silhouette import volume_geometry
 from pvshadows.snapshot import ActorState
 from pvshadows.techniques.base import FrameContext
-from pvshadows.transforms import translation, world_to_view
+from pvshadows.transforms import world_to_view
 from pvshadows.volume_casters import VolumeMesh, batches, prepare_volume_mesh, winding_number
 from pvshadows.volume_zmode import choose_zmode
 
@@ -264,7 +264,9 @@ class VolumeTechnique:
         width, height = context.viewport_size()
         light_id = vtk_id(plan.light)
         if width < 1 or height < 1:
-            self._lights.pop(light_id, None)
+            dropped = self._lights.pop(light_id, None)
+            if dropped is not None:
+                dropped.mask.release()
             return [PassReport("shadow volumes", "skipped", "the viewport has no pixels")]
         self._ensure_target(width, height)
         state = self._lights.get(light_id)
@@ -434,7 +436,7 @@ class VolumeTechnique:
             lo, hi = caster.bounds
             if np.any(position < lo) or np.any(position > hi) or mesh.how == "two-sided sheet":
                 continue
-            model = np.linalg.solve(_model_matrix(caster), np.append(position, 1.0))
+            model = np.linalg.solve(caster.model_matrix(), np.append(position, 1.0))
             if winding_number(mesh.points, mesh.triangles, model[:3] / model[3]) > 0.5:
                 return caster
         return None
@@ -450,7 +452,7 @@ class VolumeTechnique:
                 "volume depth pre-pass", "reused", "camera and actors unchanged: depth still right"
             )
         draws = [
-            DepthDraw(context.buffers.get(actor), camera @ _model_matrix(actor)) for actor in actors
+            DepthDraw(context.buffers.get(actor), camera @ actor.model_matrix()) for actor in actors
         ]
         self._depth_key = key
         return self._passes.depth(self._target, draws, context.timer)
@@ -478,7 +480,7 @@ class VolumeTechnique:
         per_caster: list[list[VolumeDraw]] = []
         rebuilt, reused, seconds = 0, 0, 0.0
         for number, (caster, mesh) in enumerate(closed):
-            model = _model_matrix(caster)
+            model = caster.model_matrix()
             light_model = np.linalg.solve(model, light)
             if light_model[3] != 0.0:
                 light_model = np.append(light_model[:3] / light_model[3], 1.0)
@@ -763,11 +765,6 @@ def _finite_reach(context: FrameContext, light: np.ndarray) -> float:
         boxes.append(np.stack([light[:3], light[:3]]))
     corners = np.concatenate(boxes)
     return 4.0 * max(float(np.linalg.norm(np.ptp(corners, axis=0))), 1e-300)
-
-
-def _model_matrix(actor: ActorState) -> np.ndarray:
-    """Model matrix of the actor's shifted triangles (float64)."""
-    return actor.matrix @ translation(actor.triangles.center)
 
 
 def _projection(renderer: vtk.vtkRenderer) -> np.ndarray:
