@@ -609,6 +609,29 @@ def append_presets_table(rows: list[BenchRow], out: Path) -> str:
     return _append(out, lines)
 
 
+def append_overhead_table(out: Path, *, quick: bool = False) -> str:
+    """Measure the CPU time shadows add per frame and append it to ``out/bench.md``.
+
+    Writes ``overhead.csv`` and ``overhead.md`` too (see :mod:`pvshadows.overhead`).
+
+    Parameters
+    ----------
+    out : pathlib.Path
+        Folder holding ``bench.md``.
+    quick : bool, default: False
+        Only the smallest scene of each series.
+
+    Returns
+    -------
+    str
+        The section written, to print.
+    """
+    from pvshadows.overhead import overhead_scenes, run_overhead, write_overhead
+
+    table = write_overhead(run_overhead(overhead_scenes(quick=quick)), out)
+    return _append(out, ["", "Overhead per frame:", "", table])
+
+
 def _append(out: Path, lines: list[str]) -> str:
     section = "\n".join(lines) + "\n"
     out.mkdir(parents=True, exist_ok=True)

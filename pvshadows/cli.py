@@ -53,6 +53,7 @@ def _bench(args: argparse.Namespace) -> int:
     from pvshadows.bench import (
         BenchCase,
         all_cases,
+        append_overhead_table,
         append_planner_table,
         append_presets_table,
         append_silhouette_table,
@@ -83,6 +84,7 @@ def _bench(args: argparse.Namespace) -> int:
     print(append_presets_table(rows, out))
     print(append_silhouette_table(silhouette_timings(sizes, repeats=1 if args.quick else 3), out))
     print(append_planner_table(planner_counts(), out))
+    print(append_overhead_table(out, quick=args.quick))
     print(f"wrote {out / 'bench.csv'}, {out / 'bench.md'} and {out / 'frontier.png'}")
     return 0
 
