@@ -434,11 +434,9 @@ class ShadowsComponent:
         return tuple(int(value) for value in np.atleast_1d(where))
 
     def _actor_name(self, actor: vtk.vtkActor) -> str:
-        key = vtk_id(actor)
-        for name, candidate in self._plotter.actors.items():
-            if vtk_id(candidate) == key:
-                return f"actor {name!r}"
-        return "an actor"
+        # PyVista keeps an actor's name on the actor itself: no walk of its collections.
+        name = getattr(actor, "name", None)
+        return f"actor {name!r}" if name else "an actor"
 
     def _all_lights(self) -> list[tuple[vtk.vtkRenderer, vtk.vtkLight]]:
         found = []

@@ -66,8 +66,37 @@ def box_in_frustum(box: np.ndarray, planes: np.ndarray) -> bool:
     >>> box_in_frustum(np.array([[-0.1, -0.1, 2.0], [0.1, 0.1, 3.0]]), planes)
     False
     """
-    farthest = np.where(planes[:, :3] >= 0.0, box[1], box[0])
-    return bool(np.all(np.sum(planes[:, :3] * farthest, axis=1) + planes[:, 3] >= 0.0))
+    return bool(boxes_in_frustum(np.asarray(box)[None], planes)[0])
+
+
+def boxes_in_frustum(boxes: np.ndarray, planes: np.ndarray) -> np.ndarray:
+    """Test many world boxes against a frustum at once, like :func:`box_in_frustum`.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` min/max corners.
+    planes : numpy.ndarray
+        ``(6, 4)`` frustum planes from :func:`frustum_planes`.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n,)`` bool, ``False`` only for boxes wholly outside one plane.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import vtk
+    >>> from pvshadows.culling import boxes_in_frustum, frustum_planes
+    >>> boxes = np.array([[[-0.1, -0.1, -1.0], [0.1, 0.1, -0.5]], [[0, 0, 2], [1, 1, 3]]])
+    >>> boxes_in_frustum(boxes, frustum_planes(vtk.vtkCamera(), 1.0)).tolist()
+    [True, False]
+    """
+    boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
+    farthest = np.where(planes[None, :, :3] >= 0.0, boxes[:, 1:2, :], boxes[:, 0:1, :])
+    distance = np.sum(planes[None, :, :3] * farthest, axis=2) + planes[None, :, 3]
+    return np.all(distance >= 0.0, axis=1)
 
 
 def box_in_spot(box: np.ndarray, pose: LightPose) -> bool:
@@ -96,28 +125,61 @@ def box_in_spot(box: np.ndarray, pose: LightPose) -> bool:
     >>> box_in_spot(np.array([[3, 3, -2], [4, 4, -1]]), pose)
     False
     """
-    lo, hi = box - pose.position
-    if np.all(lo <= 0.0) and np.all(hi >= 0.0):
-        return True
-    corners = np.array(
-        [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
-    )
+    return bool(boxes_in_spot(np.asarray(box)[None], pose)[0])
+
+
+#: Which of the min (0) or max (1) corner each coordinate of a box's eight corners takes.
+_CORNERS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=bool)
+
+
+def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:
+    """Test many world boxes against a spot light's cone at once, like :func:`box_in_spot`.
+
+    A box passes when it holds the light, or when it is inside the apex
+    plane and the four sides of the pyramid around the cone and the sphere
+    around it reaches the cone's surface.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` world bounds.
+    pose : LightPose
+        The spot light.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n,)`` bool, ``False`` only for boxes certainly outside the cone.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.culling import boxes_in_spot
+    >>> from pvshadows.lights import LightKind, LightPose
+    >>> pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 10.0)
+    >>> boxes = np.array([[[-0.1, -0.1, -2], [0.1, 0.1, -1]], [[3, 3, -2], [4, 4, -1]]])
+    >>> boxes_in_spot(boxes, pose).tolist()
+    [True, False]
+    """
+    boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
+    lo, hi = boxes[:, 0] - pose.position, boxes[:, 1] - pose.position
+    holds_light = np.all(lo <= 0.0, axis=1) & np.all(hi >= 0.0, axis=1)
+    corners = np.where(_CORNERS[None], hi[:, None, :], lo[:, None, :])
     forward = pose.direction
     right = np.cross(forward, [0.0, 0.0, 1.0] if abs(forward[2]) < 0.9 else [1.0, 0.0, 0.0])
     right /= np.linalg.norm(right)
     up = np.cross(right, forward)
     spread = np.tan(np.radians(min(pose.cone_angle, 89.9)))
     # The apex plane and the four sides of the pyramid around the cone.
-    planes = [forward] + [
-        spread * forward + sign * axis for axis in (right, up) for sign in (-1, 1)
-    ]
-    if any(np.all(corners @ plane < 0.0) for plane in planes):
-        return False
+    planes = np.array(
+        [forward] + [spread * forward + sign * axis for axis in (right, up) for sign in (-1, 1)]
+    )
+    behind_a_plane = np.any(np.all(corners @ planes.T < 0.0, axis=1), axis=1)
     center = 0.5 * (lo + hi)
-    radius = 0.5 * float(np.linalg.norm(hi - lo))
-    along = float(center @ pose.direction)
-    across = float(np.linalg.norm(center - along * pose.direction))
+    radius = 0.5 * np.linalg.norm(hi - lo, axis=1)
+    along = center @ pose.direction
+    across = np.linalg.norm(center - along[:, None] * pose.direction, axis=1)
     angle = np.radians(min(pose.cone_angle, 89.9))
     # Distance from the centre of the sphere around the box to the cone's surface.
     outside = across * np.cos(angle) - along * np.sin(angle)
-    return bool(outside <= radius)
+    return holds_light | (~behind_a_plane & (outside <= radius))

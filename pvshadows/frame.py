@@ -17,18 +17,15 @@ import vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan, plan_frame
+from pvshadows.reach import ReachCache
+from pvshadows.receivers import ReceiverEdits
 from pvshadows.report import FrameReport, LightReport
-from pvshadows.scene import vtk_id
 from pvshadows.settings import ShadowSettings
-from pvshadows.shading import (
-    PROBE_UNIFORM,
-    ShaderEdits,
-    bystander_replacements,
-    receiver_replacements,
-)
+from pvshadows.shading import PROBE_UNIFORM
 from pvshadows.snapshot import SceneReader, Snapshot
 from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.base import FrameContext, Technique
+from pvshadows.view import FrameView
 
 
 class RendererShadows:
@@ -57,7 +54,9 @@ class RendererShadows:
             renderer.AddObserver(vtk.vtkCommand.StartEvent, self._on_start),
             renderer.AddObserver(vtk.vtkCommand.EndEvent, self._on_end),
         ]
-        self._edits: dict[str, ShaderEdits] = {}
+        self._edits = ReceiverEdits()
+        #: What each spot light reached, kept between frames (``reach.tests`` counts cone tests).
+        self.reach = ReachCache()
         self._window: vtk.vtkOpenGLRenderWindow | None = None
         self._timer: PassTimer | None = None
         self._buffers: ActorBuffers | None = None
@@ -114,7 +113,8 @@ class RendererShadows:
         renderer = self.renderer
         renderer.UpdateLightsGeometryToFollowCamera()
         snapshot = self._reader.read(renderer)
-        plans = plan_frame(renderer, snapshot, self._settings_for)
+        view = FrameView.of(renderer)
+        plans = plan_frame(renderer, snapshot, self._settings_for, self.reach, view)
         context = FrameContext(
             self._window,
             renderer,
@@ -123,6 +123,7 @@ class RendererShadows:
             self._frame,
             self._buffers,
             self._timer,
+            view,
         )
         self._context = context
         report = FrameReport()
@@ -149,26 +150,7 @@ class RendererShadows:
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
 
     def _apply_edits(self, snapshot: Snapshot, shadings: list, uniforms: dict) -> None:
-        touched = set()
-        for state in snapshot.receivers:
-            edits = self._edits_of(state.actor)
-            key = vtk_id(state.actor)
-            edits.apply(receiver_replacements(state.actor, [s.for_actor(key) for s in shadings]))
-            edits.set_uniforms(uniforms)
-            touched.add(vtk_id(state.actor))
-        for actor in snapshot.bystanders:
-            edits = self._edits_of(actor)
-            edits.apply(bystander_replacements())
-            edits.set_uniforms({PROBE_UNIFORM: self.probe_index})
-            touched.add(vtk_id(actor))
-        for key in set(self._edits) - touched:
-            self._edits.pop(key).remove()
-
-    def _edits_of(self, actor: vtk.vtkActor) -> ShaderEdits:
-        key = vtk_id(actor)
-        if key not in self._edits:
-            self._edits[key] = ShaderEdits(actor)
-        return self._edits[key]
+        self._edits.update(snapshot, shadings, uniforms)
 
     def _on_end(self, renderer: vtk.vtkRenderer, event: str) -> None:
         if self.show_debug and self.probe_index < 0 and self._context is not None:
@@ -188,8 +170,6 @@ class RendererShadows:
             self._timer.collect()
 
     def _clear_edits(self) -> None:
-        for edits in self._edits.values():
-            edits.remove()
         self._edits.clear()
 
     def detach(self) -> None:

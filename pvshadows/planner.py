@@ -17,14 +17,16 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-import numpy as np
 import vtk
 
-from pvshadows.culling import box_in_frustum, box_in_spot, frustum_planes
+from pvshadows.culling import boxes_in_frustum
 from pvshadows.lights import LightKind, LightPose, casts_light, light_kind, light_pose
 from pvshadows.planes import sole_plane
+from pvshadows.reach import ReachCache
+from pvshadows.scene import vtk_id
 from pvshadows.settings import ShadowSettings
 from pvshadows.snapshot import ActorState, Snapshot
+from pvshadows.view import FrameView
 
 #: Technique ``"auto"`` picks for each kind of light.
 AUTO_TECHNIQUE = {LightKind.POINT: "cubemap", LightKind.SPOT: "map", LightKind.DIRECTIONAL: "map"}
@@ -101,6 +103,8 @@ def plan_frame(
     renderer: vtk.vtkRenderer,
     snapshot: Snapshot,
     settings_for: Callable[[vtk.vtkLight], ShadowSettings | None],
+    reach: ReachCache | None = None,
+    view: FrameView | None = None,
 ) -> list[LightPlan]:
     """Plan every light of a renderer for this frame.
 
@@ -113,6 +117,11 @@ def plan_frame(
     settings_for : callable
         Returns a light's settings, or ``None`` if shadows are not enabled
         for it.
+    reach : ReachCache, optional
+        What each spot light reached in earlier frames, so only changed
+        actors and moved lights are tested again; a fresh one by default.
+    view : FrameView, optional
+        This frame's camera; built from the renderer by default.
 
     Returns
     -------
@@ -123,9 +132,11 @@ def plan_frame(
     vtk_index = 0
     lights = renderer.GetLights()
     lights.InitTraversal()
+    reach = ReachCache() if reach is None else reach
     casters = snapshot.casters
-    planes = frustum_planes(renderer.GetActiveCamera(), renderer.GetTiledAspectRatio())
-    seen = [r for r in snapshot.receivers if box_in_frustum(r.bounds, planes)]
+    view = FrameView.of(renderer) if view is None else view
+    in_view = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
+    seen = [r for r, shown in zip(snapshot.receivers, in_view, strict=True) if shown]
     only_a_plane = sole_plane(snapshot.receivers) is not None
     for index in range(lights.GetNumberOfItems()):
         light = lights.GetNextItem()
@@ -155,8 +166,8 @@ def plan_frame(
         if technique is None:
             plan.notes.append(why)
             continue
-        reach = _reach(pose)
-        reached = [r for r in seen if reach(r.bounds)]
+        key = vtk_id(light)
+        reached = [r for r, hit in zip(seen, reach.reaches(key, pose, seen), strict=True) if hit]
         if not reached:
             plan.notes.append(
                 "no receiver the camera sees is in the light's reach: it casts nothing and "
@@ -165,7 +176,9 @@ def plan_frame(
                 else "the camera sees no receiver: the light casts nothing and costs nothing"
             )
             continue
-        within = [c for c in casters if reach(c.bounds)]
+        within = [
+            c for c, hit in zip(casters, reach.reaches(key, pose, casters), strict=True) if hit
+        ]
         if not within:
             plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
             continue
@@ -173,10 +186,5 @@ def plan_frame(
         if pose.kind is LightKind.SPOT:
             plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
         plan.pose, plan.casters, plan.technique = pose, within, technique
+    reach.keep_only({vtk_id(plan.light) for plan in plans}, snapshot.actors)
     return plans
-
-
-def _reach(pose: LightPose) -> Callable[[np.ndarray], bool]:
-    if pose.kind is LightKind.SPOT:
-        return lambda box: box_in_spot(box, pose)
-    return lambda box: True

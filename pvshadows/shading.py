@@ -14,7 +14,7 @@ texture unit) and retyped here to the sampler type the lookup needs.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -231,19 +231,56 @@ def set_uniform(uniforms: vtk.vtkUniforms, name: str, value: object) -> None:
     >>> uniforms.GetNumberOfUniforms()
     1
     """
+    uniform_setter(name, value)(uniforms)
+
+
+def uniform_setter(name: str, value: object) -> Callable[[vtk.vtkUniforms], None]:
+    """Return a function setting one custom uniform, its value converted once.
+
+    Setting the same value on many receivers converts it only here.
+
+    Parameters
+    ----------
+    name : str
+        Uniform name.
+    value : int, float, sequence of 4 floats, or (4, 4) array
+        As :func:`set_uniform` takes it.
+
+    Returns
+    -------
+    callable
+        Takes a ``vtk.vtkUniforms`` and sets the uniform on it.
+
+    Raises
+    ------
+    TypeError
+        For a value of another shape.
+
+    Examples
+    --------
+    >>> import vtk
+    >>> from pvshadows.shading import uniform_setter
+    >>> setter = uniform_setter("pvsUnit", 3)
+    >>> uniforms = vtk.vtkShaderProperty().GetFragmentCustomUniforms()
+    >>> setter(uniforms)
+    >>> uniforms.GetNumberOfUniforms()
+    1
+    """
     if isinstance(value, bool | int | np.integer):
-        uniforms.SetUniformi(name, int(value))
-    elif isinstance(value, float | np.floating):
-        uniforms.SetUniformf(name, float(value))
-    else:
-        array = np.asarray(value, dtype=np.float64)
-        if array.shape == (4, 4):
-            uniforms.SetUniformMatrix4x4(name, column_major(array).tolist())
-        elif array.shape == (4,):
-            uniforms.SetUniform4f(name, array.astype(np.float32).tolist())
-        else:
-            msg = f"uniform {name}: cannot upload a value of shape {array.shape}"
-            raise TypeError(msg)
+        whole = int(value)
+        return lambda uniforms: uniforms.SetUniformi(name, whole)
+    if isinstance(value, float | np.floating):
+        real = float(value)
+        return lambda uniforms: uniforms.SetUniformf(name, real)
+    array = np.asarray(value, dtype=np.float64)
+    if array.shape == (4, 4):
+        matrix = column_major(array).tolist()
+        return lambda uniforms: uniforms.SetUniformMatrix4x4(name, matrix)
+    if array.shape == (4,):
+        vector = array.astype(np.float32).tolist()
+        return lambda uniforms: uniforms.SetUniform4f(name, vector)
+    msg = f"uniform {name}: cannot upload a value of shape {array.shape}"
+    raise TypeError(msg)
 
 
 class ShaderEdits:

@@ -1,13 +1,18 @@
 """What a renderer holds in one frame: casters, receivers and their geometry.
 
-Triangles are re-read only when an actor's data changed (VTK modification
-time); transforms and bounds are refreshed every frame, which is cheap.
+Each frame reads one VTK modification time per actor (its redraw time, which
+covers the actor, its property, its mapper and the mapper's input) and its
+roles; an actor whose stamp did not change keeps last frame's state (matrix,
+bounds, name, triangles) untouched. Triangles are re-read only when the
+actor's data changed. When no actor changed, the frame gets last frame's
+:class:`Snapshot` itself, so what is derived from it can be kept too.
 """
 
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 import vtk
@@ -54,10 +59,14 @@ class ActorState:
 
     def key(self) -> tuple:
         """Return a value that changes when the actor's shadow-casting shape changes."""
+        return self._key
+
+    @cached_property
+    def _key(self) -> tuple:
         return (vtk_id(self.actor), self.triangles.version, self.matrix.tobytes())
 
 
-@dataclass
+@dataclass(eq=False)
 class Snapshot:
     """The actors of a renderer in one frame.
 
@@ -72,20 +81,36 @@ class Snapshot:
 
     actors: list[ActorState]
     bystanders: list[vtk.vtkActor]
+    #: Keys (:func:`pvshadows.scene.vtk_id`) of the actors read again for this frame.
+    changed: frozenset[str] = field(default_factory=frozenset)
 
-    @property
+    @cached_property
     def casters(self) -> list[ActorState]:
         """Actors that cast shadows."""
         return [a for a in self.actors if a.caster]
 
-    @property
+    @cached_property
     def receivers(self) -> list[ActorState]:
         """Actors that show shadows."""
         return [a for a in self.actors if a.receiver]
 
+    @cached_property
+    def caster_bounds(self) -> np.ndarray:
+        """World bounds of :attr:`casters`, ``(n, 2, 3)``."""
+        return _stacked(self.casters)
+
+    @cached_property
+    def receiver_bounds(self) -> np.ndarray:
+        """World bounds of :attr:`receivers`, ``(n, 2, 3)``."""
+        return _stacked(self.receivers)
+
+
+def _stacked(states: list[ActorState]) -> np.ndarray:
+    return np.array([s.bounds for s in states]).reshape(-1, 2, 3)
+
 
 class SceneReader:
-    """Reads a renderer's actors each frame, keeping triangles between frames.
+    """Reads a renderer's actors each frame, keeping what did not change.
 
     Parameters
     ----------
@@ -97,11 +122,14 @@ class SceneReader:
         self._names = names
         self._cache: dict[str, tuple[vtk.vtkActor, tuple | None, ActorTriangles | None]] = {}
         self._versions = 0
+        self._frames: dict[str, _RendererCache] = {}
         self.casting: dict[str, bool] = {}
         self.receiving: dict[str, bool] = {}
         #: Actors named receiving planes of planar shadows.
         self.planes: set[str] = set()
         self.problems: dict[str, str] = {}
+        #: How many actors were read again (stamp changed) since the reader was made.
+        self.reread = 0
 
     def triangles_of(self, actor: vtk.vtkActor) -> ActorTriangles | None:
         """Return the actor's triangles, re-reading them only when its data changed.
@@ -148,49 +176,99 @@ class SceneReader:
         Returns
         -------
         Snapshot
-            Casters, receivers and bystanders.
+            Casters, receivers and bystanders; last frame's own object when
+            no actor changed.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> from pvshadows.snapshot import SceneReader
+        >>> pl = pv.Plotter(off_screen=True)
+        >>> box = pl.add_mesh(pv.Cube())
+        >>> reader = SceneReader(lambda actor: "an actor")
+        >>> first = reader.read(pl.renderer)
+        >>> reader.read(pl.renderer) is first
+        True
+        >>> box.position = (1, 0, 0)
+        >>> sorted(reader.read(pl.renderer).changed) == [box.__this__]
+        True
         """
-        actors: list[ActorState] = []
-        bystanders: list[vtk.vtkActor] = []
-        seen = set()
+        cache = self._frames.setdefault(vtk_id(renderer), _RendererCache())
+        entries: dict[str, _Entry] = {}
+        changed = []
+        camera = renderer.GetActiveCamera().GetMTime()
         collection = renderer.GetActors()
         collection.InitTraversal()
         for _ in range(collection.GetNumberOfItems()):
             actor = collection.GetNextActor()
-            if not actor.GetVisibility() or actor.GetMapper() is None:
-                continue
-            seen.add(vtk_id(actor))
-            try:
-                triangles = self.triangles_of(actor)
-            except ValueError as error:
-                if self.problems.get(vtk_id(actor)) != str(error):
-                    warnings.warn(f"pvshadows leaves it out: {error}", stacklevel=2)
-                self.problems[vtk_id(actor)] = str(error)
-                bystanders.append(actor)
-                continue
-            self.problems.pop(vtk_id(actor), None)
-            if triangles is None:
-                bystanders.append(actor)
-                continue
-            matrix = actor_matrix(actor)
-            caster = self.casting.get(vtk_id(actor), True)
-            receiver = self.receiving.get(vtk_id(actor), True) and bool(
-                actor.GetProperty().GetLighting()
+            key = actor.__this__
+            stamp = (
+                vtk.vtkActor.GetRedrawMTime(actor),
+                self.casting.get(key, True),
+                self.receiving.get(key, True),
+                key in self.planes,
             )
-            if not receiver:
-                bystanders.append(actor)
-            actors.append(
-                ActorState(
-                    actor,
-                    self._names(actor),
-                    triangles,
-                    matrix,
-                    world_bounds(triangles, matrix),
-                    caster,
-                    receiver,
-                    receiver and vtk_id(actor) in self.planes,
-                )
-            )
-        for key in set(self._cache) - seen:
-            del self._cache[key]
-        return Snapshot(actors, bystanders)
+            entry = cache.entries.get(key)
+            if isinstance(actor, vtk.vtkFollower):
+                # A follower turns to face the camera: its matrix changes with the camera's.
+                stamp = (*stamp, camera)
+            if entry is None or entry.stamp != stamp:
+                entry = self._entry(actor, key, stamp)
+                changed.append(key)
+            entries[key] = entry
+        if not changed and entries.keys() == cache.entries.keys() and cache.snapshot:
+            return cache.snapshot
+        self.reread += len(changed)
+        for key in cache.entries.keys() - entries.keys():
+            self._cache.pop(key, None)
+        actors = [e.state for e in entries.values() if e.state is not None]
+        bystanders = [e.actor for e in entries.values() if e.bystander]
+        cache.entries = entries
+        cache.snapshot = Snapshot(actors, bystanders, frozenset(changed))
+        return cache.snapshot
+
+    def _entry(self, actor: vtk.vtkActor, key: str, stamp: tuple) -> _Entry:
+        if not actor.GetVisibility() or actor.GetMapper() is None:
+            return _Entry(actor, stamp, None, bystander=False)
+        try:
+            triangles = self.triangles_of(actor)
+        except ValueError as error:
+            if self.problems.get(key) != str(error):
+                warnings.warn(f"pvshadows leaves it out: {error}", stacklevel=3)
+            self.problems[key] = str(error)
+            return _Entry(actor, stamp, None, bystander=True)
+        self.problems.pop(key, None)
+        if triangles is None:
+            return _Entry(actor, stamp, None, bystander=True)
+        matrix = actor_matrix(actor)
+        _, caster, receiving, plane = stamp[:4]
+        receiver = receiving and bool(actor.GetProperty().GetLighting())
+        state = ActorState(
+            actor,
+            self._names(actor),
+            triangles,
+            matrix,
+            world_bounds(triangles, matrix),
+            caster,
+            receiver,
+            receiver and plane,
+        )
+        return _Entry(actor, stamp, state, bystander=not receiver)
+
+
+@dataclass
+class _Entry:
+    """What one actor was at its last change."""
+
+    actor: vtk.vtkActor
+    stamp: tuple
+    state: ActorState | None
+    bystander: bool
+
+
+@dataclass
+class _RendererCache:
+    """The actors one renderer showed in its last frame."""
+
+    entries: dict[str, _Entry] = field(default_factory=dict)
+    snapshot: Snapshot | None = None

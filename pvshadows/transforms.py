@@ -199,42 +199,6 @@ def translation(offset: np.ndarray) -> np.ndarray:
     return m
 
 
-def world_to_view(camera: vtk.vtkCamera) -> np.ndarray:
-    """Return the camera's world-to-view matrix (float64, 4x4).
-
-    Parameters
-    ----------
-    camera : vtk.vtkCamera
-        The renderer's active camera.
-
-    Returns
-    -------
-    numpy.ndarray
-        The matrix VTK uses for view coordinates (``vertexVC`` in shaders).
-    """
-    matrix = camera.GetModelViewTransformMatrix()
-    return np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
-
-
-def view_to_light(camera: vtk.vtkCamera, light_position: np.ndarray) -> np.ndarray:
-    """Return the matrix from view coordinates to world axes centred on the light.
-
-    Parameters
-    ----------
-    camera : vtk.vtkCamera
-        The renderer's active camera.
-    light_position : numpy.ndarray
-        The light's world position.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``(4, 4)`` float64; its float32 copy is precise because both the
-        view coordinates and the result are relative to nearby points.
-    """
-    return translation(-np.asarray(light_position, float)) @ np.linalg.inv(world_to_view(camera))
-
-
 def to_vtk_matrix(matrix: np.ndarray) -> vtk.vtkMatrix4x4:
     """Return a ``vtkMatrix4x4`` holding ``matrix``.
 

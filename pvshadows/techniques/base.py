@@ -13,6 +13,7 @@ from pvshadows.planner import LightPlan
 from pvshadows.report import PassReport
 from pvshadows.shading import LightShading
 from pvshadows.snapshot import Snapshot
+from pvshadows.view import FrameView
 
 
 @dataclass
@@ -35,6 +36,9 @@ class FrameContext:
         GPU copies of the actors' triangles, shared by all techniques.
     timer : PassTimer
         Measures each pass's GPU time.
+    view : FrameView
+        The camera's matrices, viewport and frustum for the target being
+        drawn, built once for the frame.
     """
 
     window: vtk.vtkOpenGLRenderWindow
@@ -44,6 +48,7 @@ class FrameContext:
     frame: int
     buffers: ActorBuffers
     timer: PassTimer
+    view: FrameView
 
     def viewport_size(self) -> tuple[int, int]:
         """Return the renderer's size in pixels."""

@@ -17,7 +17,7 @@ from pvshadows.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
-from pvshadows.transforms import translation, view_to_light
+from pvshadows.transforms import translation
 
 
 @dataclass
@@ -179,7 +179,7 @@ class CubemapTechnique(PerLightMaps):
         uniforms = self._filters.activate(i, settings, state.cube)
         uniforms.update(
             {
-                f"pvsViewToLight{i}": view_to_light(context.camera, pose.position),
+                f"pvsViewToLight{i}": translation(-pose.position) @ context.view.view_to_world,
                 f"pvsParams{i}": (
                     state.far,
                     2.0 / settings.resolution,

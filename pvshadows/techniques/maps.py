@@ -27,7 +27,7 @@ from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
 from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
-from pvshadows.transforms import translation, world_to_view
+from pvshadows.transforms import translation
 
 
 @dataclass
@@ -233,8 +233,7 @@ class MapTechnique(PerLightMaps):
         state = self._states[vtk_id(plan.light)]
         i = plan.vtk_index
         uniforms = self._filters.activate(i, plan.settings, state.depth if state.drawn else None)
-        view_to_world = np.linalg.inv(world_to_view(context.camera))
-        uniforms[f"pvsViewToLight{i}"] = state.world_to_light @ view_to_world
+        uniforms[f"pvsViewToLight{i}"] = state.world_to_light @ context.view.view_to_world
         uniforms[f"pvsParams{i}"] = state.params
         if _kind(plan) == "spot":
             cone = float(np.cos(np.radians(plan.pose.cone_angle)))

@@ -43,7 +43,7 @@ from pvshadows.scene import vtk_id
 from pvshadows.shading import LightShading
 from pvshadows.snapshot import ActorState
 from pvshadows.techniques.base import FrameContext
-from pvshadows.transforms import translation, world_to_view
+from pvshadows.transforms import translation
 
 _PASS = "planar mask"
 
@@ -382,10 +382,7 @@ class PlanarTechnique:
             Uniform names and values for every receiver.
         """
         i = plan.vtk_index
-        light = homogeneous_light(plan)
-        light_vc = world_to_view(context.camera) @ light
-        if light[3] == 0.0:
-            light_vc[:3] /= np.linalg.norm(light_vc[:3])
+        light_vc = context.view.light_in_view(homogeneous_light(plan))
         uniforms: dict[str, object] = {f"pvsPlanarLightVC{i}": light_vc}
         state = self._lights.get(vtk_id(plan.light))
         if state is None or state.plane_actor is None:

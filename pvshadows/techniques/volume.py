@@ -55,7 +55,6 @@ from pvshadows.shading import LightShading
 from pvshadows.silhouette import volume_geometry
 from pvshadows.snapshot import ActorState
 from pvshadows.techniques.base import FrameContext
-from pvshadows.transforms import world_to_view
 from pvshadows.volume_casters import VolumeMesh, batches, prepare_volume_mesh, winding_number
 from pvshadows.volume_zmode import choose_zmode
 
@@ -667,10 +666,7 @@ class VolumeTechnique:
         state.mask.texture.Activate()
         i = plan.vtk_index
         width, height, x0, y0 = _tiled_viewport(context.renderer)
-        light = _homogeneous_light(plan)
-        light_vc = world_to_view(context.camera) @ light
-        if light[3] == 0.0:
-            light_vc[:3] /= np.linalg.norm(light_vc[:3])
+        light_vc = context.view.light_in_view(_homogeneous_light(plan))
         uniforms: dict[str, object] = {
             f"pvsMask{i}": state.mask.texture.GetTextureUnit(),
             f"pvsMaskViewport{i}": (float(x0), float(y0), float(width), float(height)),
