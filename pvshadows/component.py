@@ -334,9 +334,12 @@ class ShadowsComponent:
         -------
         pvshadows.report.FrameReport
             Printable; ``passes_run`` counts the passes that ran. With
-            subplots, each light says which subplot it lights.
+            subplots, each light says which subplot it lights. GPU times
+            are read without stalling the GPU: a pass's ``ms`` arrives in
+            this same report a frame or two later (``frame`` says which
+            frame it is, ``gpu_ready`` whether every time is in).
         """
-        report = FrameReport()
+        report = FrameReport(frame=max((r.last_frame.frame for r in self._renderers), default=0))
         several = len(self._renderers) > 1
         for number, renderer in enumerate(self._renderers):
             for light in renderer.last_frame.lights:

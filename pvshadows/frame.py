@@ -126,7 +126,7 @@ class RendererShadows:
             view,
         )
         self._context = context
-        report = FrameReport()
+        report = FrameReport(frame=self._frame)
         uniforms: dict[str, object] = {PROBE_UNIFORM: self.probe_index}
         shadings = []
         self._active = []

@@ -19,7 +19,9 @@ class PassReport:
     detail : str
         Why, in words.
     ms : float or None
-        GPU time of the pass in milliseconds (``None`` when it did not run).
+        GPU time of the pass in milliseconds; ``None`` when it did not run,
+        and until the GPU has finished it (GPU times are read without
+        waiting, usually a frame or two later).
     """
 
     name: str
@@ -83,6 +85,9 @@ class FrameReport:
     ----------
     lights : list of LightReport
         One entry per light of the renderer.
+    frame : int
+        Number of the frame (counted per renderer from 1) whose passes
+        these are; their GPU times belong to this frame, whenever they arrive.
 
     Examples
     --------
@@ -94,6 +99,14 @@ class FrameReport:
     """
 
     lights: list[LightReport] = field(default_factory=list)
+    frame: int = 0
+
+    @property
+    def gpu_ready(self) -> bool:
+        """Whether every pass that ran on the GPU has its time (see :attr:`PassReport.ms`)."""
+        return all(
+            p.ms is not None for light in self.lights for p in light.passes if p.status == "run"
+        )
 
     @property
     def passes_run(self) -> int:

@@ -9,6 +9,7 @@ import pyvista as pv
 
 from conftest import draw, point_light
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.timing import MAX_FRAMES_IN_FLIGHT
 from pvshadows.scenes import standard_scene
 
 
@@ -226,10 +227,15 @@ def test_last_frame_prints_what_ran(scene):
     pl = scene.plotter
     pl.shadows.enable(filter="hard")
     draw(pl)
-    text = str(pl.shadows.last_frame)
+    report = pl.shadows.last_frame
+    for _ in range(MAX_FRAMES_IN_FLIGHT):  # GPU times arrive without stalling, frames later
+        draw(pl)
+    assert pl.shadows.last_frame.frame == report.frame + MAX_FRAMES_IN_FLIGHT
+    assert report.gpu_ready
+    text = str(report)
     assert "light 0 (point): cubemap" in text
     assert " ms " in text
-    ms = pl.shadows.last_frame.lights[0].passes[0].ms
+    ms = report.lights[0].passes[0].ms
     assert ms is not None and 0 < ms < 10_000
 
 
