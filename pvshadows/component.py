@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Iterable
 from dataclasses import replace
 from numbers import Integral, Real
@@ -15,8 +16,8 @@ from pvshadows.gl.binding import check_window
 from pvshadows.lights import light_kind, light_pose
 from pvshadows.measure import Measurement, compare
 from pvshadows.planes import require_plane
-from pvshadows.planner import SERVES, LightPlan
-from pvshadows.probe import read_visibility
+from pvshadows.planner import AUTO_TECHNIQUE, SERVES, LightPlan
+from pvshadows.probe import read_visibility, require_drawn
 from pvshadows.reference import SceneMesh, ViewSpec, trace_reference
 from pvshadows.report import FrameReport
 from pvshadows.scene import vtk_id, world_points
@@ -121,11 +122,13 @@ class ShadowsComponent:
         >>> pl.shadows.enabled
         True
         """
+        self._check_open("enable")
         defaults = validated(preset(quality), technique=technique, **settings)
         chosen = None
         if lights is not None:
-            chosen = {vtk_id(self._check_light(light, "lights")) for light in lights}
+            chosen = {vtk_id(self._check_light(light, "lights")) for light in _light_list(lights)}
         self._check_scene()
+        self._warn_unserved(defaults, chosen)
         self._check_volumes(defaults)
         if self._plotter.render_window is not None:
             check_window(self._plotter.render_window)
@@ -240,7 +243,7 @@ class ShadowsComponent:
         >>> ground = pl.add_mesh(pv.Plane())
         >>> pl.shadows.set_caster(ground, False)
         """
-        self._reader.casting[vtk_id(self._check_actor(actor, cast))] = bool(cast)
+        self._reader.casting[vtk_id(self._check_actor(actor, cast, "cast"))] = bool(cast)
 
     def set_receiver(
         self, actor: vtk.vtkActor, receive: bool = True, *, plane: bool = False
@@ -275,7 +278,7 @@ class ShadowsComponent:
         >>> floor = pl.add_mesh(pv.Plane(i_size=10, j_size=10))
         >>> pl.shadows.set_receiver(floor, plane=True)
         """
-        key = vtk_id(self._check_actor(actor, receive))
+        key = vtk_id(self._check_actor(actor, receive, "receive"))
         if not isinstance(plane, bool | np.bool_):
             msg = f"plane must be True or False, got {plane!r}"
             raise TypeError(msg)
@@ -339,6 +342,7 @@ class ShadowsComponent:
         report = FrameReport()
         several = len(self._renderers) > 1
         for number, renderer in enumerate(self._renderers):
+            report.failure = report.failure or renderer.last_frame.failure
             for light in renderer.last_frame.lights:
                 report.lights.append(
                     replace(light, subplot=self._subplot(number)) if several else light
@@ -366,8 +370,15 @@ class ShadowsComponent:
 
         Raises
         ------
+        TypeError
+            If ``light`` is not a ``pyvista.Light``.
         ValueError
-            If the light cast no shadow in the last frame.
+            If the light is not in this plotter or cast no shadow in the
+            last frame.
+        pvshadows.probe.FrameFailedError
+            If pvshadows failed in the frame, so it was drawn without
+            shadows (:attr:`last_frame` says which light, which pass and
+            the error).
         """
         renderer, plan = self._plan_of(light)
         return read_visibility(self._plotter, renderer.renderer, plan.vtk_index, renderer)
@@ -410,6 +421,11 @@ class ShadowsComponent:
         pvshadows.measure.Measurement
             Share of lit-side pixels whose shadow class disagrees, false and
             missed shadow shares, and the RMSE of visibility.
+
+        Raises
+        ------
+        TypeError, ValueError, pvshadows.probe.FrameFailedError
+            As :meth:`visibility` does.
         """
         shown = self.visibility(light)
         traced = self._trace(light, **reference)
@@ -441,12 +457,11 @@ class ShadowsComponent:
         return "an actor"
 
     def _all_lights(self) -> list[tuple[vtk.vtkRenderer, vtk.vtkLight]]:
-        found = []
-        for renderer in self._plotter.renderers:
-            lights = renderer.GetLights()
-            lights.InitTraversal()
-            found.extend((renderer, lights.GetNextItem()) for _ in range(lights.GetNumberOfItems()))
-        return found
+        return [
+            (renderer, light)
+            for renderer in self._plotter.renderers
+            for light in _lights_of(renderer)
+        ]
 
     def _check_light(self, light: object, argument: str) -> vtk.vtkLight:
         if not isinstance(light, vtk.vtkLight):
@@ -461,16 +476,53 @@ class ShadowsComponent:
         light_pose(light)
         return light
 
-    def _check_actor(self, actor: object, flag: object) -> vtk.vtkActor:
+    def _check_actor(self, actor: object, flag: object, flag_name: str) -> vtk.vtkActor:
         if not isinstance(actor, vtk.vtkActor):
             msg = (
                 f"actor must be a pyvista.Actor (what add_mesh returns), got {type(actor).__name__}"
             )
             raise TypeError(msg)
+        if not any(renderer.HasViewProp(actor) for renderer in self._plotter.renderers):
+            msg = (
+                f"actor: this {type(actor).__name__} is not in this plotter (never added, "
+                "removed, or added to another plotter); add it with pl.add_mesh() or "
+                "pl.add_actor() first"
+            )
+            raise ValueError(msg)
         if not isinstance(flag, bool | np.bool_):
-            msg = f"the flag must be True or False, got {flag!r}"
+            msg = f"{flag_name} must be True or False, got {flag!r}"
             raise TypeError(msg)
         return actor
+
+    def _check_open(self, call: str) -> None:
+        if getattr(self._plotter, "_closed", False) or self._plotter.render_window is None:
+            msg = (
+                f"{call}(): this plotter is closed (close(), or show() or screenshot() "
+                "closing it, ended it); create a new plotter to draw shadows"
+            )
+            raise RuntimeError(msg)
+
+    def _warn_unserved(self, defaults: ShadowSettings, chosen: set[str] | None) -> None:
+        """Warn once, in enable(), about lights the technique asked for cannot serve."""
+        if defaults.technique == "auto":
+            return
+        unserved = []
+        for renderer, light in self._all_lights():
+            key = vtk_id(light)
+            if (chosen is not None and key not in chosen) or key in self._per_light:
+                continue
+            kind = light_kind(light)
+            if light.LightTypeIsHeadlight() or kind in SERVES[defaults.technique]:
+                continue
+            index = [vtk_id(found) for found in _lights_of(renderer)].index(key)
+            unserved.append(f"light {index} ({kind.value}, {AUTO_TECHNIQUE[kind]})")
+        if unserved:
+            msg = (
+                f"technique={defaults.technique!r} cannot serve {len(unserved)} light(s); "
+                f"they cast with auto's choice instead: {', '.join(unserved)} "
+                "(pl.shadows.last_frame says the same)"
+            )
+            warnings.warn(msg, stacklevel=3)
 
     def _check_scene(self) -> None:
         for _, light in self._all_lights():
@@ -505,11 +557,14 @@ class ShadowsComponent:
             require_closed(casters)
 
     def _plan_of(self, light: vtk.vtkLight | None) -> tuple[RendererShadows, LightPlan]:
+        if light is not None:
+            self._check_light(light, "light")
         if not self._renderers:
             msg = "shadows are not enabled: call pl.shadows.enable() first"
             raise ValueError(msg)
-        if all(r.snapshot is None for r in self._renderers):
+        if all(r.snapshot is None and r.error is None for r in self._renderers):
             self._plotter.screenshot(return_img=True)
+        require_drawn(self._renderers)
         for renderer in self._renderers:
             for plan in renderer.plans:
                 if plan.technique is None:
@@ -568,3 +623,21 @@ class ShadowsComponent:
             )
             self._traced = (key, result)
         return self._traced[1]
+
+
+def _lights_of(renderer: vtk.vtkRenderer) -> list[vtk.vtkLight]:
+    lights = renderer.GetLights()
+    lights.InitTraversal()
+    return [lights.GetNextItem() for _ in range(lights.GetNumberOfItems())]
+
+
+def _light_list(lights: object) -> list[object]:
+    if isinstance(lights, vtk.vtkLight):
+        return [lights]
+    if isinstance(lights, str | bytes) or not isinstance(lights, Iterable):
+        msg = (
+            "lights must be a pyvista.Light or an iterable of lights of this plotter, "
+            f"got {type(lights).__name__}"
+        )
+        raise TypeError(msg)
+    return list(lights)
