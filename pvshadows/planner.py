@@ -15,7 +15,7 @@ faces without casters) it reports in the same frame's words.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import vtk
@@ -93,7 +93,11 @@ def _technique_for(
             f"auto chose {technique} for a {kind.value} light (quality={settings.quality!r})"
         )
     if kind not in SERVES[settings.technique]:
-        return None, f"technique {settings.technique!r} cannot serve a {kind.value} light"
+        technique, _ = _technique_for(kind, replace(settings, technique="auto"), only_a_plane)
+        return technique, (
+            f"technique {settings.technique!r} cannot serve a {kind.value} light: "
+            f"it casts with {technique}, auto's choice, instead"
+        )
     return settings.technique, f"{settings.technique} as configured"
 
 
