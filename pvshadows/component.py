@@ -18,7 +18,7 @@ from pvshadows.measure import Measurement, compare
 from pvshadows.planes import require_plane
 from pvshadows.planner import AUTO_TECHNIQUE, SERVES, LightPlan
 from pvshadows.probe import read_visibility, require_drawn
-from pvshadows.reference import SceneMesh, ViewSpec, trace_reference
+from pvshadows.reference import MAX_SAMPLES, SceneMesh, ViewSpec, trace_reference
 from pvshadows.report import FrameReport
 from pvshadows.scene import vtk_id, world_points
 from pvshadows.settings import ShadowSettings, preset, validated
@@ -435,6 +435,11 @@ class ShadowsComponent:
         TypeError, ValueError, pvshadows.probe.FrameFailedError
             As :meth:`visibility` does.
         """
+        unknown = sorted(set(reference) - {"light_size", "samples"})
+        if unknown:
+            msg = f"unknown reference option(s) {', '.join(unknown)}; they are light_size, samples"
+            raise TypeError(msg)
+        _check_reference_options(**reference)
         shown = self.visibility(light)
         traced = self._trace(light, **reference)
         return compare(shown, traced)
@@ -596,12 +601,7 @@ class ShadowsComponent:
         raise AssertionError  # _check_light guarantees the light is in the plotter
 
     def _trace(self, light: vtk.vtkLight | None, *, light_size: object = 0.0, samples: object = 1):
-        if isinstance(light_size, bool) or not isinstance(light_size, Real):
-            msg = f"light_size must be a number, got {light_size!r}"
-            raise TypeError(msg)
-        if isinstance(samples, bool) or not isinstance(samples, Integral):
-            msg = f"samples must be an int, got {samples!r}"
-            raise TypeError(msg)
+        _check_reference_options(light_size, samples)
         light, ren = self._light_and_renderer(light)
         snapshot = self._reader.read(ren)
         width, height = ren.GetSize()
@@ -649,3 +649,24 @@ def _light_list(lights: object) -> list[object]:
         )
         raise TypeError(msg)
     return list(lights)
+
+
+def _check_reference_options(light_size: object = 0.0, samples: object = 1) -> None:
+    if isinstance(light_size, bool) or not isinstance(light_size, Real):
+        msg = f"light_size must be a number, got {light_size!r}"
+        raise TypeError(msg)
+    if isinstance(samples, bool) or not isinstance(samples, Integral):
+        msg = f"samples must be an int, got {samples!r}"
+        raise TypeError(msg)
+    if not (np.isfinite(light_size) and light_size >= 0.0):
+        msg = f"light_size={light_size} is not allowed; it must be a finite number >= 0"
+        raise ValueError(msg)
+    if not 1 <= samples <= MAX_SAMPLES:
+        msg = f"samples={samples} is out of range; it must be from 1 to {MAX_SAMPLES}"
+        raise ValueError(msg)
+    if (samples > 1) != (light_size > 0.0):
+        msg = (
+            f"samples={samples} with light_size={light_size}: soft shadows need both "
+            "samples > 1 and light_size > 0, hard shadows samples=1 and light_size=0"
+        )
+        raise ValueError(msg)

@@ -134,12 +134,11 @@ class ShadowSettings:
 
 
 def _choice(name: str, value: object, allowed: tuple) -> object:
-    if (
-        not isinstance(value, str if isinstance(allowed[0], str) else Integral)
-        or value not in allowed
-    ):
+    kind = str if isinstance(allowed[0], str) else Integral
+    if not isinstance(value, kind) or isinstance(value, bool) or value not in allowed:
         msg = f"{name}={value!r} is not allowed; choose one of {', '.join(map(repr, allowed))}"
-        raise (ValueError if isinstance(value, str | Integral) else TypeError)(msg)
+        right_type = isinstance(value, kind) and not isinstance(value, bool)
+        raise (ValueError if right_type else TypeError)(msg)
     return value
 
 
