@@ -757,12 +757,11 @@ class _Tracer:
         if self.shadow is not None:
             pixel, sample = np.nonzero(open_ray)
             toward = directions[pixel, sample]
-            span = distance[pixel, sample]
-            far = ~np.isfinite(span)
-            if far.any():
-                _, leave = _slab(points[pixel[far]], toward[far], self.shadow.lo, self.shadow.hi)
-                span[far] = np.maximum(leave, 0.0) + _BOX_MARGIN
-            reach = span - LIGHT_CLEARANCE
+            # Rays start at the light or where they enter the casters' bounds, whichever is
+            # nearer the point: float32 origins then stay close to the geometry at any distance.
+            _, leave = _slab(points[pixel], toward, self.shadow.lo, self.shadow.hi)
+            span = distance[pixel, sample] - LIGHT_CLEARANCE
+            reach = np.minimum(span, np.maximum(leave, 0.0) + _BOX_MARGIN)
             origins = points[pixel] + toward * reach[:, None]
             triangle, blocker = self.shadow.first_hit(origins, -toward)
             open_ray[pixel, sample] = (triangle < 0) | (blocker >= reach - RAY_TOLERANCE)
