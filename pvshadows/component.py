@@ -18,7 +18,13 @@ from pvshadows.measure import Measurement, compare
 from pvshadows.planes import require_plane
 from pvshadows.planner import AUTO_TECHNIQUE, SERVES, LightPlan
 from pvshadows.probe import read_visibility, require_drawn
-from pvshadows.reference import MAX_SAMPLES, SceneMesh, ViewSpec, trace_reference
+from pvshadows.reference import (
+    MAX_SAMPLES,
+    SceneMesh,
+    ViewSpec,
+    require_traceable,
+    trace_reference,
+)
 from pvshadows.report import FrameReport
 from pvshadows.scene import vtk_id, world_points
 from pvshadows.settings import ShadowSettings, preset, validated
@@ -617,6 +623,9 @@ class ShadowsComponent:
             tuple((*a.key(), a.caster, a.receiver) for a in snapshot.actors),
         )
         if self._traced is None or self._traced[0] != key:
+            require_traceable(
+                {a.name: float(np.linalg.norm(np.ptp(a.bounds, axis=0))) for a in snapshot.actors}
+            )
             meshes = [
                 SceneMesh(
                     world_points(a.triangles, a.matrix),
