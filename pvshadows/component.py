@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Iterable
 from dataclasses import replace
 from numbers import Integral, Real
@@ -15,9 +16,15 @@ from pvshadows.gl.binding import check_window
 from pvshadows.lights import light_kind, light_pose
 from pvshadows.measure import Measurement, compare
 from pvshadows.planes import require_plane
-from pvshadows.planner import SERVES, LightPlan
-from pvshadows.probe import read_visibility
-from pvshadows.reference import SceneMesh, ViewSpec, trace_reference
+from pvshadows.planner import AUTO_TECHNIQUE, SERVES, LightPlan
+from pvshadows.probe import read_visibility, require_drawn
+from pvshadows.reference import (
+    MAX_SAMPLES,
+    SceneMesh,
+    ViewSpec,
+    require_traceable,
+    trace_reference,
+)
 from pvshadows.report import FrameReport
 from pvshadows.scene import vtk_id, world_points
 from pvshadows.settings import ShadowSettings, preset, validated
@@ -87,7 +94,11 @@ class ShadowsComponent:
             ``"volume"``: stencil shadow volumes, pixel-exact hard shadows
             from every kind of light; ``"planar"``: casters flattened onto
             one receiving plane, the cheapest, every kind of light, but
-            objects do not shadow each other).
+            objects do not shadow each other). A light the named technique
+            cannot serve (``"cubemap"`` and a directional light, ``"map"``
+            and a point light) casts with auto's choice instead: one
+            warning names those lights and :attr:`last_frame` says so
+            (:meth:`configure` refuses the same request for one light).
         quality : {"draft", "balanced", "exact"}, default: "balanced"
             A point on the accuracy-cost frontier that ``pvshadows bench``
             measures: ``"draft"`` (512-texel maps, hard edges), ``"balanced"``
@@ -101,7 +112,11 @@ class ShadowsComponent:
             ``pcf_taps``, ``samples``, ``filter_radius``, ``light_size``,
             ``passes``, ``bias``, ``slope_bias``, ``normal_offset``, and for
             volumes ``zmode``, ``extrude``, ``on_open`` (see
-            :class:`pvshadows.settings.ShadowSettings`).
+            :class:`pvshadows.settings.ShadowSettings`). ``bias=0,
+            slope_bias=0, normal_offset=0`` compares each lit surface with
+            its own depth in the map, so about half of it shadows itself in
+            speckles (acne, 43 % of lit pixels in the standard scene); that
+            warns, as it is only useful to see what the biases do.
 
         Raises
         ------
@@ -121,11 +136,13 @@ class ShadowsComponent:
         >>> pl.shadows.enabled
         True
         """
+        self._check_open("enable")
         defaults = validated(preset(quality), technique=technique, **settings)
         chosen = None
         if lights is not None:
-            chosen = {vtk_id(self._check_light(light, "lights")) for light in lights}
+            chosen = {vtk_id(self._check_light(light, "lights")) for light in _light_list(lights)}
         self._check_scene()
+        self._warn_unserved(defaults, chosen)
         self._check_volumes(defaults)
         if self._plotter.render_window is not None:
             check_window(self._plotter.render_window)
@@ -240,7 +257,7 @@ class ShadowsComponent:
         >>> ground = pl.add_mesh(pv.Plane())
         >>> pl.shadows.set_caster(ground, False)
         """
-        self._reader.casting[vtk_id(self._check_actor(actor, cast))] = bool(cast)
+        self._reader.casting[vtk_id(self._check_actor(actor, cast, "cast"))] = bool(cast)
 
     def set_receiver(
         self, actor: vtk.vtkActor, receive: bool = True, *, plane: bool = False
@@ -275,7 +292,7 @@ class ShadowsComponent:
         >>> floor = pl.add_mesh(pv.Plane(i_size=10, j_size=10))
         >>> pl.shadows.set_receiver(floor, plane=True)
         """
-        key = vtk_id(self._check_actor(actor, receive))
+        key = vtk_id(self._check_actor(actor, receive, "receive"))
         if not isinstance(plane, bool | np.bool_):
             msg = f"plane must be True or False, got {plane!r}"
             raise TypeError(msg)
@@ -342,6 +359,7 @@ class ShadowsComponent:
         report = FrameReport(frame=max((r.last_frame.frame for r in self._renderers), default=0))
         several = len(self._renderers) > 1
         for number, renderer in enumerate(self._renderers):
+            report.failure = report.failure or renderer.last_frame.failure
             for light in renderer.last_frame.lights:
                 report.lights.append(
                     replace(light, subplot=self._subplot(number)) if several else light
@@ -369,8 +387,15 @@ class ShadowsComponent:
 
         Raises
         ------
+        TypeError
+            If ``light`` is not a ``pyvista.Light``.
         ValueError
-            If the light cast no shadow in the last frame.
+            If the light is not in this plotter or cast no shadow in the
+            last frame.
+        pvshadows.probe.FrameFailedError
+            If pvshadows failed in the frame, so it was drawn without
+            shadows (:attr:`last_frame` says which light, which pass and
+            the error).
         """
         renderer, plan = self._plan_of(light)
         return read_visibility(self._plotter, renderer.renderer, plan.vtk_index, renderer)
@@ -413,7 +438,17 @@ class ShadowsComponent:
         pvshadows.measure.Measurement
             Share of lit-side pixels whose shadow class disagrees, false and
             missed shadow shares, and the RMSE of visibility.
+
+        Raises
+        ------
+        TypeError, ValueError, pvshadows.probe.FrameFailedError
+            As :meth:`visibility` does.
         """
+        unknown = sorted(set(reference) - {"light_size", "samples"})
+        if unknown:
+            msg = f"unknown reference option(s) {', '.join(unknown)}; they are light_size, samples"
+            raise TypeError(msg)
+        _check_reference_options(**reference)
         shown = self.visibility(light)
         traced = self._trace(light, **reference)
         return compare(shown, traced)
@@ -442,12 +477,11 @@ class ShadowsComponent:
         return f"actor {name!r}" if name else "an actor"
 
     def _all_lights(self) -> list[tuple[vtk.vtkRenderer, vtk.vtkLight]]:
-        found = []
-        for renderer in self._plotter.renderers:
-            lights = renderer.GetLights()
-            lights.InitTraversal()
-            found.extend((renderer, lights.GetNextItem()) for _ in range(lights.GetNumberOfItems()))
-        return found
+        return [
+            (renderer, light)
+            for renderer in self._plotter.renderers
+            for light in _lights_of(renderer)
+        ]
 
     def _check_light(self, light: object, argument: str) -> vtk.vtkLight:
         if not isinstance(light, vtk.vtkLight):
@@ -462,16 +496,53 @@ class ShadowsComponent:
         light_pose(light)
         return light
 
-    def _check_actor(self, actor: object, flag: object) -> vtk.vtkActor:
+    def _check_actor(self, actor: object, flag: object, flag_name: str) -> vtk.vtkActor:
         if not isinstance(actor, vtk.vtkActor):
             msg = (
                 f"actor must be a pyvista.Actor (what add_mesh returns), got {type(actor).__name__}"
             )
             raise TypeError(msg)
+        if not any(renderer.HasViewProp(actor) for renderer in self._plotter.renderers):
+            msg = (
+                f"actor: this {type(actor).__name__} is not in this plotter (never added, "
+                "removed, or added to another plotter); add it with pl.add_mesh() or "
+                "pl.add_actor() first"
+            )
+            raise ValueError(msg)
         if not isinstance(flag, bool | np.bool_):
-            msg = f"the flag must be True or False, got {flag!r}"
+            msg = f"{flag_name} must be True or False, got {flag!r}"
             raise TypeError(msg)
         return actor
+
+    def _check_open(self, call: str) -> None:
+        if getattr(self._plotter, "_closed", False) or self._plotter.render_window is None:
+            msg = (
+                f"{call}(): this plotter is closed (close(), or show() or screenshot() "
+                "closing it, ended it); create a new plotter to draw shadows"
+            )
+            raise RuntimeError(msg)
+
+    def _warn_unserved(self, defaults: ShadowSettings, chosen: set[str] | None) -> None:
+        """Warn once, in enable(), about lights the technique asked for cannot serve."""
+        if defaults.technique == "auto":
+            return
+        unserved = []
+        for renderer, light in self._all_lights():
+            key = vtk_id(light)
+            if (chosen is not None and key not in chosen) or key in self._per_light:
+                continue
+            kind = light_kind(light)
+            if light.LightTypeIsHeadlight() or kind in SERVES[defaults.technique]:
+                continue
+            index = [vtk_id(found) for found in _lights_of(renderer)].index(key)
+            unserved.append(f"light {index} ({kind.value}, {AUTO_TECHNIQUE[kind]})")
+        if unserved:
+            msg = (
+                f"technique={defaults.technique!r} cannot serve {len(unserved)} light(s); "
+                f"they cast with auto's choice instead: {', '.join(unserved)} "
+                "(pl.shadows.last_frame says the same)"
+            )
+            warnings.warn(msg, stacklevel=3)
 
     def _check_scene(self) -> None:
         for _, light in self._all_lights():
@@ -506,11 +577,14 @@ class ShadowsComponent:
             require_closed(casters)
 
     def _plan_of(self, light: vtk.vtkLight | None) -> tuple[RendererShadows, LightPlan]:
+        if light is not None:
+            self._check_light(light, "light")
         if not self._renderers:
             msg = "shadows are not enabled: call pl.shadows.enable() first"
             raise ValueError(msg)
-        if all(r.snapshot is None for r in self._renderers):
+        if all(r.snapshot is None and r.error is None for r in self._renderers):
             self._plotter.screenshot(return_img=True)
+        require_drawn(self._renderers)
         for renderer in self._renderers:
             for plan in renderer.plans:
                 if plan.technique is None:
@@ -534,12 +608,7 @@ class ShadowsComponent:
         raise AssertionError  # _check_light guarantees the light is in the plotter
 
     def _trace(self, light: vtk.vtkLight | None, *, light_size: object = 0.0, samples: object = 1):
-        if isinstance(light_size, bool) or not isinstance(light_size, Real):
-            msg = f"light_size must be a number, got {light_size!r}"
-            raise TypeError(msg)
-        if isinstance(samples, bool) or not isinstance(samples, Integral):
-            msg = f"samples must be an int, got {samples!r}"
-            raise TypeError(msg)
+        _check_reference_options(light_size, samples)
         light, ren = self._light_and_renderer(light)
         snapshot = self._reader.read(ren)
         width, height = ren.GetSize()
@@ -555,6 +624,9 @@ class ShadowsComponent:
             tuple((*a.key(), a.caster, a.receiver) for a in snapshot.actors),
         )
         if self._traced is None or self._traced[0] != key:
+            require_traceable(
+                {a.name: float(np.linalg.norm(np.ptp(a.bounds, axis=0))) for a in snapshot.actors}
+            )
             meshes = [
                 SceneMesh(
                     world_points(a.triangles, a.matrix),
@@ -569,3 +641,42 @@ class ShadowsComponent:
             )
             self._traced = (key, result)
         return self._traced[1]
+
+
+def _lights_of(renderer: vtk.vtkRenderer) -> list[vtk.vtkLight]:
+    lights = renderer.GetLights()
+    lights.InitTraversal()
+    return [lights.GetNextItem() for _ in range(lights.GetNumberOfItems())]
+
+
+def _light_list(lights: object) -> list[object]:
+    if isinstance(lights, vtk.vtkLight):
+        return [lights]
+    if isinstance(lights, str | bytes) or not isinstance(lights, Iterable):
+        msg = (
+            "lights must be a pyvista.Light or an iterable of lights of this plotter, "
+            f"got {type(lights).__name__}"
+        )
+        raise TypeError(msg)
+    return list(lights)
+
+
+def _check_reference_options(light_size: object = 0.0, samples: object = 1) -> None:
+    if isinstance(light_size, bool) or not isinstance(light_size, Real):
+        msg = f"light_size must be a number, got {light_size!r}"
+        raise TypeError(msg)
+    if isinstance(samples, bool) or not isinstance(samples, Integral):
+        msg = f"samples must be an int, got {samples!r}"
+        raise TypeError(msg)
+    if not (np.isfinite(light_size) and light_size >= 0.0):
+        msg = f"light_size={light_size} is not allowed; it must be a finite number >= 0"
+        raise ValueError(msg)
+    if not 1 <= samples <= MAX_SAMPLES:
+        msg = f"samples={samples} is out of range; it must be from 1 to {MAX_SAMPLES}"
+        raise ValueError(msg)
+    if (samples > 1) != (light_size > 0.0):
+        msg = (
+            f"samples={samples} with light_size={light_size}: soft shadows need both "
+            "samples > 1 and light_size > 0, hard shadows samples=1 and light_size=0"
+        )
+        raise ValueError(msg)

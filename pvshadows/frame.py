@@ -9,8 +9,10 @@ times into :attr:`RendererShadows.last_frame`.
 
 from __future__ import annotations
 
+import traceback
 import warnings
 from collections.abc import Callable
+from pathlib import Path
 
 import vtk
 
@@ -19,7 +21,7 @@ from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan, plan_frame
 from pvshadows.reach import ReachCache
 from pvshadows.receivers import ReceiverEdits
-from pvshadows.report import FrameReport, LightReport
+from pvshadows.report import FrameFailure, FrameReport, LightReport
 from pvshadows.settings import ShadowSettings
 from pvshadows.shading import PROBE_UNIFORM
 from pvshadows.snapshot import SceneReader, Snapshot
@@ -67,7 +69,10 @@ class RendererShadows:
         self.plans: list[LightPlan] = []
         self.snapshot: Snapshot | None = None
         self.last_frame = FrameReport()
+        #: The exception that made the last frame draw without shadows, else ``None``.
         self.error: Exception | None = None
+        self._where = ""
+        self._building = FrameReport()
         #: Let techniques draw debug overlays (``draw_debug``) over the finished frame.
         self.show_debug = False
         self._context: FrameContext | None = None
@@ -99,21 +104,22 @@ class RendererShadows:
         self._techniques = {}
 
     def _on_start(self, renderer: vtk.vtkRenderer, event: str) -> None:
+        self._frame += 1
+        self._where = "reading the scene"
+        self._building = FrameReport(frame=self._frame)
         try:
             self._run_frame()
             self.error = None
         except Exception as error:
-            self.error = error
-            self._clear_edits()
-            warnings.warn(f"pvshadows drew this frame without shadows: {error}", stacklevel=1)
+            self._fail(error)
 
     def _run_frame(self) -> None:
         self._start_gl()
-        self._frame += 1
         renderer = self.renderer
         renderer.UpdateLightsGeometryToFollowCamera()
         snapshot = self._reader.read(renderer)
         view = FrameView.of(renderer)
+        self._where = "planning"
         plans = plan_frame(renderer, snapshot, self._settings_for, self.reach, view)
         context = FrameContext(
             self._window,
@@ -126,7 +132,7 @@ class RendererShadows:
             view,
         )
         self._context = context
-        report = FrameReport(frame=self._frame)
+        report = self._building
         uniforms: dict[str, object] = {PROBE_UNIFORM: self.probe_index}
         shadings = []
         self._active = []
@@ -137,32 +143,83 @@ class RendererShadows:
             report.lights.append(light_report)
             if plan.technique is None:
                 continue
+            self._where = f"light {plan.index} ({plan.kind.value}, {plan.technique})"
             technique = self.technique(plan.technique)
             light_report.passes = technique.update(plan, context)
             shadings.append(technique.shading(plan))
-            uniforms.update(technique.activate(plan, context))
             if technique not in self._active:
                 self._active.append(technique)
+            uniforms.update(technique.activate(plan, context))
+        self._where = "keeping only this frame's maps"
         for technique in self._techniques.values():
             technique.keep_only(plans)
         self._buffers.keep_only(snapshot.actors)
+        self._where = "receiver shader edits"
         self._apply_edits(snapshot, shadings, uniforms)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
+
+    def _fail(self, error: Exception) -> None:
+        """Draw this frame unshadowed: undo every edit, drop every map, say so once per fault.
+
+        Nothing raised here leaves the VTK observer: a clean-up step that
+        fails too is named in the report instead.
+        """
+        self.error = error
+        where = f"{self._where}{_raised_in(error)}"
+        troubles = self._undo()
+        failure = FrameFailure(self._frame, where, f"{type(error).__name__}: {error}", troubles)
+        previous = self.last_frame.failure
+        if previous is not None and previous.same_fault(failure):
+            failure.repeats = previous.repeats + 1
+        report = self._building
+        for light in report.lights:
+            light.technique, light.passes = None, []
+        report.failure = failure
+        self.plans, self.last_frame = [], report
+        if failure.repeats == 1:
+            warnings.warn(f"pvshadows drew {failure}", stacklevel=1)
+
+    def _undo(self) -> list[str]:
+        """Leave receivers' shaders as VTK built them and release the maps; return what failed."""
+        troubles = []
+        steps = [(f"deactivating {type(t).__name__}", t.deactivate) for t in self._active]
+        steps += [
+            (f"removing the edits of {edits.actor.GetClassName()}", edits.remove)
+            for edits in self._edits.values()
+        ]
+        steps += [(f"releasing {type(t).__name__}", t.release) for t in self._techniques.values()]
+        if self._timer is not None:
+            steps.append(("collecting GPU times", self._timer.collect))
+        for what, step in steps:
+            try:
+                step()
+            except Exception as error:
+                troubles.append(f"{what}: {type(error).__name__}: {error}")
+        self._edits.clear()
+        self._active = []
+        self._techniques = {}
+        self._context = None
+        return troubles
 
     def _apply_edits(self, snapshot: Snapshot, shadings: list, uniforms: dict) -> None:
         self._edits.update(snapshot, shadings, uniforms)
 
     def _on_end(self, renderer: vtk.vtkRenderer, event: str) -> None:
+        if self.error is not None:
+            return
+        try:
+            self._finish_frame()
+        except Exception as error:
+            self._fail(error)
+
+    def _finish_frame(self) -> None:
         if self.show_debug and self.probe_index < 0 and self._context is not None:
+            self._where = "drawing the debug overlay"
             for technique in self._active:
                 draw = getattr(technique, "draw_debug", None)
-                try:
-                    if draw is not None:
-                        draw(self._context)
-                except Exception as error:
-                    warnings.warn(
-                        f"pvshadows could not draw its debug overlay: {error}", stacklevel=1
-                    )
+                if draw is not None:
+                    draw(self._context)
+        self._where = "the end of the frame"
         for technique in self._active:
             technique.deactivate()
         self._active = []
@@ -187,3 +244,14 @@ class RendererShadows:
             self._timer.release()
         self._techniques.clear()
         self._window = None
+
+
+def _raised_in(error: Exception) -> str:
+    """Return where in pvshadows ``error`` was raised, e.g. ``" in CubeDepthPass.render"``."""
+    package = str(Path(__file__).parent)
+    inside = [
+        frame
+        for frame, _ in traceback.walk_tb(error.__traceback__)
+        if frame.f_code.co_filename.startswith(package)
+    ]
+    return f" in {inside[-1].f_code.co_qualname}" if inside else ""

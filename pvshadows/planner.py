@@ -15,8 +15,9 @@ faces without casters) it reports in the same frame's words.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
+import numpy as np
 import vtk
 
 from pvshadows.culling import boxes_in_frustum
@@ -30,6 +31,10 @@ from pvshadows.view import FrameView
 
 #: Technique ``"auto"`` picks for each kind of light.
 AUTO_TECHNIQUE = {LightKind.POINT: "cubemap", LightKind.SPOT: "map", LightKind.DIRECTIONAL: "map"}
+#: A point light's casters within a cone of this half angle (degrees) get a map of that cone.
+FIT_CONE_BELOW = 30.0
+#: Casters' radius over their distance below which a point light's rays count as parallel.
+PARALLEL_BELOW = 2e-4
 #: Kinds of light each technique can serve.
 SERVES = {
     "cubemap": (LightKind.POINT, LightKind.SPOT),
@@ -95,7 +100,11 @@ def _technique_for(
             f"auto chose {technique} for a {kind.value} light (quality={settings.quality!r})"
         )
     if kind not in SERVES[settings.technique]:
-        return None, f"technique {settings.technique!r} cannot serve a {kind.value} light"
+        technique, _ = _technique_for(kind, replace(settings, technique="auto"), only_a_plane)
+        return technique, (
+            f"technique {settings.technique!r} cannot serve a {kind.value} light: "
+            f"it casts with {technique}, auto's choice, instead"
+        )
     return settings.technique, f"{settings.technique} as configured"
 
 
@@ -183,8 +192,43 @@ def plan_frame(
             plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
             continue
         plan.notes.append(why)
-        if pose.kind is LightKind.SPOT:
+        if technique == "cubemap" and pose.kind is LightKind.POINT:
+            technique, pose = _fit_far_point(pose, within, plan.notes)
+        if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
             plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
         plan.pose, plan.casters, plan.technique = pose, within, technique
     reach.keep_only({vtk_id(plan.light) for plan in plans}, snapshot.actors)
     return plans
+
+
+def _fit_far_point(
+    pose: LightPose, casters: list[ActorState], notes: list[str]
+) -> tuple[str, LightPose]:
+    """Give a point light whose casters subtend a small angle a perspective map of their cone.
+
+    Seen from far away, casters cover a few texels of one cube face and the
+    texel-sized biases swallow their shadows; a map aimed at them spends
+    every texel on them, at any distance. Receivers outside the cone stay
+    lit (nothing there can shadow them).
+    """
+    lo = np.min([c.bounds[0] for c in casters], axis=0)
+    hi = np.max([c.bounds[1] for c in casters], axis=0)
+    centre = (lo + hi) / 2.0
+    distance = float(np.linalg.norm(centre - pose.position))
+    radius = float(np.linalg.norm(hi - lo)) / 2.0
+    if distance <= radius / np.sin(np.radians(FIT_CONE_BELOW)):
+        return "cubemap", pose
+    half = float(np.degrees(np.arcsin(radius / distance)))
+    direction = (centre - pose.position) / distance
+    if radius / distance < PARALLEL_BELOW:
+        notes.append(
+            f"the casters subtend {2 * half:.3g} degrees from the light: its rays are "
+            "parallel there to a tenth of a texel, so an orthographic map along them"
+        )
+        return "map", LightPose(LightKind.DIRECTIONAL, pose.position, direction, 180.0)
+    notes.append(
+        f"the casters subtend {2 * half:.3g} degrees from the light: a perspective map "
+        "aimed at them instead of a cube"
+    )
+    return "map", LightPose(LightKind.SPOT, pose.position, direction, half)
+

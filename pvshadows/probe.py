@@ -33,6 +33,33 @@ def _renderer_box(renderer: vtk.vtkRenderer, width: int, height: int) -> tuple[s
     return rows, cols
 
 
+class FrameFailedError(RuntimeError):
+    """The frame to read was drawn without shadows because pvshadows failed in it."""
+
+
+def require_drawn(renderers: list) -> None:
+    """Raise if the last frame of any of ``renderers`` failed and was drawn without shadows.
+
+    Parameters
+    ----------
+    renderers : list of pvshadows.frame.RendererShadows
+        The renderers to check.
+
+    Raises
+    ------
+    FrameFailedError
+        Saying which light and pass failed, and the error.
+    """
+    for renderer in renderers:
+        failure = renderer.last_frame.failure
+        if renderer.error is not None and failure is not None:
+            msg = (
+                f"the last frame has no shadows to read: {failure} "
+                "(pl.shadows.last_frame says the same)"
+            )
+            raise FrameFailedError(msg) from renderer.error
+
+
 def read_visibility(
     plotter: pv.Plotter, renderer: vtk.vtkRenderer, vtk_index: int, shadows
 ) -> np.ndarray:
@@ -68,6 +95,7 @@ def read_visibility(
     shadows.probe_index = vtk_index
     try:
         window.Render()
+        require_drawn([shadows])
         pixels = _window_pixels(window).astype(np.float32) / 255.0
     finally:
         shadows.probe_index = -1

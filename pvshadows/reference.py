@@ -242,6 +242,50 @@ class ReferenceResult:
     depth: np.ndarray
 
 
+#: Smallest size of a mesh, as a fraction of the whole scene's, that float32 ray casting resolves.
+SMALLEST_TRACEABLE = 1e-6
+
+
+def require_traceable(sizes: dict[str, float]) -> None:
+    """Refuse a scene whose meshes span more sizes than float32 ray casting resolves.
+
+    Embree intersects in float32 in a frame scaled to the whole scene, so a
+    mesh below :data:`SMALLEST_TRACEABLE` of the scene's size (say a 2-unit
+    box next to a sphere of radius 1e30) is traced as a speck or not at all:
+    its shadows would be wrong, silently.
+
+    Parameters
+    ----------
+    sizes : dict
+        Each mesh's name and the diagonal of its world bounds.
+
+    Raises
+    ------
+    ValueError
+        Naming the smallest mesh, its size and the scene's.
+
+    Examples
+    --------
+    >>> from pvshadows.reference import require_traceable
+    >>> require_traceable({"box": 1.7, "ground": 14.1})
+    >>> require_traceable({"box": 1.7, "sky": 2e30})  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: reference(): box is 1.7 across in a scene 2e+30 across (sky); float32 ...
+    """
+    if not sizes:
+        return
+    largest = max(sizes, key=sizes.get)
+    smallest = min(sizes, key=sizes.get)
+    if sizes[smallest] < SMALLEST_TRACEABLE * sizes[largest]:
+        msg = (
+            f"reference(): {smallest} is {sizes[smallest]:.3g} across in a scene "
+            f"{sizes[largest]:.3g} across ({largest}); float32 ray casting resolves meshes "
+            f"down to {SMALLEST_TRACEABLE:g} of the scene, so it cannot trace this one"
+        )
+        raise ValueError(msg)
+
+
 def trace_reference(
     meshes: Sequence[SceneMesh],
     view: ViewSpec,
@@ -757,12 +801,11 @@ class _Tracer:
         if self.shadow is not None:
             pixel, sample = np.nonzero(open_ray)
             toward = directions[pixel, sample]
-            span = distance[pixel, sample]
-            far = ~np.isfinite(span)
-            if far.any():
-                _, leave = _slab(points[pixel[far]], toward[far], self.shadow.lo, self.shadow.hi)
-                span[far] = np.maximum(leave, 0.0) + _BOX_MARGIN
-            reach = span - LIGHT_CLEARANCE
+            # Rays start at the light or where they enter the casters' bounds, whichever is
+            # nearer the point: float32 origins then stay close to the geometry at any distance.
+            _, leave = _slab(points[pixel], toward, self.shadow.lo, self.shadow.hi)
+            span = distance[pixel, sample] - LIGHT_CLEARANCE
+            reach = np.minimum(span, np.maximum(leave, 0.0) + _BOX_MARGIN)
             origins = points[pixel] + toward * reach[:, None]
             triangle, blocker = self.shadow.first_hit(origins, -toward)
             open_ray[pixel, sample] = (triangle < 0) | (blocker >= reach - RAY_TOLERANCE)

@@ -78,6 +78,51 @@ class LightReport:
 
 
 @dataclass
+class FrameFailure:
+    """Why a frame was drawn without shadows.
+
+    Attributes
+    ----------
+    frame : int
+        The renderer's frame number.
+    where : str
+        What was running: which light and technique (or the planning, the
+        receivers' shader edits, the end of the frame) and the function
+        that raised.
+    error : str
+        The exception, type and message.
+    cleanup : list of str
+        Clean-up steps that failed too (the frame is still drawn plainly).
+    repeats : int
+        How many frames in a row failed this same way, this one included.
+
+    Examples
+    --------
+    >>> from pvshadows.report import FrameFailure
+    >>> print(FrameFailure(3, "light 0 (point, cubemap)", "RuntimeError: no memory"))
+    frame 3 without shadows: light 0 (point, cubemap) raised RuntimeError: no memory
+    """
+
+    frame: int
+    where: str
+    error: str
+    cleanup: list[str] = field(default_factory=list)
+    repeats: int = 1
+
+    def same_fault(self, other: FrameFailure) -> bool:
+        """Whether ``other`` failed in the same place with the same error."""
+        return (self.where, self.error) == (other.where, other.error)
+
+    def __str__(self) -> str:
+        text = f"frame {self.frame} without shadows: {self.where} raised {self.error}"
+        if self.repeats > 1:
+            text += f" ({self.repeats} frames in a row)"
+        if self.cleanup:
+            text += "; clean-up also failed: " + "; ".join(self.cleanup)
+        return text
+
+
+@dataclass
 class FrameReport:
     """What pvshadows did in one frame, light by light.
 
@@ -88,6 +133,8 @@ class FrameReport:
     frame : int
         Number of the frame (counted per renderer from 1) whose passes
         these are; their GPU times belong to this frame, whenever they arrive.
+    failure : FrameFailure or None
+        Why the frame was drawn without shadows, ``None`` when it was not.
 
     Examples
     --------
@@ -100,6 +147,7 @@ class FrameReport:
 
     lights: list[LightReport] = field(default_factory=list)
     frame: int = 0
+    failure: FrameFailure | None = None
 
     @property
     def gpu_ready(self) -> bool:
@@ -119,6 +167,7 @@ class FrameReport:
         return sum(p.ms or 0.0 for light in self.lights for p in light.passes)
 
     def __str__(self) -> str:
-        if not self.lights:
-            return "no lights"
-        return "\n".join(str(light) for light in self.lights)
+        lines = [str(light) for light in self.lights] or ["no lights"]
+        if self.failure is not None:
+            lines.insert(0, str(self.failure))
+        return "\n".join(lines)

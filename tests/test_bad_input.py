@@ -58,7 +58,7 @@ def test_configure_checks_the_light(scene):
 def test_set_caster_and_receiver_check_their_arguments(scene):
     with pytest.raises(TypeError, match=r"actor must be a pyvista\.Actor"):
         scene.plotter.shadows.set_caster(pv.Sphere(), False)
-    with pytest.raises(TypeError, match="the flag must be True or False, got 'no'"):
+    with pytest.raises(TypeError, match="receive must be True or False, got 'no'"):
         scene.plotter.shadows.set_receiver(scene.box, "no")
 
 

@@ -236,7 +236,9 @@ class MapTechnique(PerLightMaps):
         uniforms[f"pvsViewToLight{i}"] = state.world_to_light @ context.view.view_to_world
         uniforms[f"pvsParams{i}"] = state.params
         if _kind(plan) == "spot":
-            cone = float(np.cos(np.radians(plan.pose.cone_angle)))
+            # A point light's map covers only its casters' cone; it lights beyond it.
+            lit = plan.kind is LightKind.SPOT
+            cone = float(np.cos(np.radians(plan.pose.cone_angle))) if lit else -2.0
             uniforms[f"pvsLightToClip{i}"] = state.light_to_clip
             uniforms[f"pvsCone{i}"] = (*plan.pose.direction, cone)
         return uniforms

@@ -53,7 +53,7 @@ from pvshadows.report import PassReport
 from pvshadows.scene import ActorTriangles, vtk_id
 from pvshadows.shading import LightShading
 from pvshadows.silhouette import volume_geometry
-from pvshadows.snapshot import ActorState
+from pvshadows.snapshot import ActorState, Snapshot
 from pvshadows.techniques.base import FrameContext
 from pvshadows.volume_casters import VolumeMesh, batches, prepare_volume_mesh, winding_number
 from pvshadows.volume_zmode import choose_zmode
@@ -277,6 +277,13 @@ class VolumeTechnique:
         state.fallback = self._plan_fallback(plan, open_casters)
         light = _homogeneous_light(plan)
         enclosing = self._enclosing_caster(light, closed)
+        while enclosing is not None and _holds_the_rest(enclosing, closed, context.snapshot):
+            plan.notes.append(
+                f"the light and every other receiver are inside {enclosing.name}: it shadows "
+                "none of them, so it casts no volume"
+            )
+            closed = [(c, m) for c, m in closed if c is not enclosing]
+            enclosing = self._enclosing_caster(light, closed)
         if enclosing is not None:
             plan.notes.append(
                 f"the light is inside {enclosing.name}: everything outside it is in its shadow"
@@ -773,3 +780,17 @@ def _tiled_viewport(renderer: vtk.vtkRenderer) -> tuple[int, int, int, int]:
     width, height = renderer.GetSize()
     x0, y0 = renderer.GetOrigin()
     return int(width), int(height), int(x0), int(y0)
+
+
+def _holds_the_rest(
+    enclosing: ActorState, closed: list[tuple[ActorState, VolumeMesh]], snapshot: Snapshot
+) -> bool:
+    """Whether every receiver but ``enclosing`` lies inside it (a room around the scene)."""
+    mesh = next(m for c, m in closed if c is enclosing)
+    others = [r for r in snapshot.receivers if r is not enclosing]
+    inverse = np.linalg.inv(enclosing.model_matrix())
+    for receiver in others:
+        centre = inverse @ np.append(receiver.bounds.mean(axis=0), 1.0)
+        if winding_number(mesh.points, mesh.triangles, centre[:3] / centre[3]) < 0.5:
+            return False
+    return bool(others)
