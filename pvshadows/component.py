@@ -100,8 +100,9 @@ class ShadowsComponent:
             Defaults for every light: ``resolution``, ``filter``,
             ``pcf_taps``, ``samples``, ``filter_radius``, ``light_size``,
             ``passes``, ``bias``, ``slope_bias``, ``normal_offset``, and for
-            volumes ``zmode``, ``extrude``, ``on_open`` (see
-            :class:`pvshadows.settings.ShadowSettings`).
+            volumes ``zmode``, ``extrude``, ``on_open``, and ``strength``
+            (0 to 1: how much of a shadowed light's contribution is removed,
+            1 by default; see :class:`pvshadows.settings.ShadowSettings`).
 
         Raises
         ------
@@ -172,8 +173,8 @@ class ShadowsComponent:
             Any setting of :class:`pvshadows.settings.ShadowSettings`
             (``technique``, ``resolution``, ``filter``, ``pcf_taps``,
             ``samples``, ``light_size``, ``passes``, the biases, ``zmode``,
-            ``extrude``, ``on_open``, ...); ``quality`` starts from that
-            preset instead of the light's current settings.
+            ``extrude``, ``on_open``, ``strength``, ...); ``quality`` starts
+            from that preset instead of the light's current settings.
 
         Raises
         ------
@@ -363,6 +364,13 @@ class ShadowsComponent:
             float32 ``(H, W)`` in [0, 1], row 0 at the top, NaN where the
             pixel shows no receiving surface. 0 where the visible side faces
             away from the light.
+
+        Notes
+        -----
+        This is the geometric visibility, the same at every ``strength``:
+        a receiver shows ``1 - strength * (1 - visibility)`` of the light's
+        diffuse and specular terms, so :meth:`measure` judges the shadow
+        test itself against :meth:`reference` whatever the strength.
 
         Raises
         ------

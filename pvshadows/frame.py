@@ -25,6 +25,7 @@ from pvshadows.shading import (
     ShaderEdits,
     bystander_replacements,
     receiver_replacements,
+    strength_uniform,
 )
 from pvshadows.snapshot import SceneReader, Snapshot
 from pvshadows.techniques import TECHNIQUE_CLASSES
@@ -140,6 +141,7 @@ class RendererShadows:
             light_report.passes = technique.update(plan, context)
             shadings.append(technique.shading(plan))
             uniforms.update(technique.activate(plan, context))
+            uniforms[strength_uniform(plan.vtk_index)] = plan.settings.strength
             if technique not in self._active:
                 self._active.append(technique)
         for technique in self._techniques.values():

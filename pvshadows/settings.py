@@ -125,6 +125,7 @@ class ShadowSettings:
     zmode: str = "auto"
     extrude: str = "gpu"
     on_open: str = "fallback"
+    strength: float = 1.0
 
 
 def _choice(name: str, value: object, allowed: tuple) -> object:
@@ -170,6 +171,16 @@ def _light_size(value: object) -> float:
     return float(value)
 
 
+def _strength(value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real):
+        msg = f"strength must be a number from 0 (no shadow) to 1 (full shadow), got {value!r}"
+        raise TypeError(msg)
+    if not (math.isfinite(value) and 0.0 <= value <= 1.0):
+        msg = f"strength={value} is out of range; it must be from 0 (no shadow) to 1 (full shadow)"
+        raise ValueError(msg)
+    return float(value)
+
+
 def _flag(name: str, value: object) -> bool:
     if not isinstance(value, bool):
         msg = f"{name} must be True or False, got {value!r}"
@@ -204,6 +215,7 @@ _CHECKS = {
     "zmode": lambda v: _choice("zmode", v, ZMODES),
     "extrude": lambda v: _choice("extrude", v, EXTRUDE),
     "on_open": lambda v: _choice("on_open", v, ON_OPEN),
+    "strength": _strength,
 }
 
 
