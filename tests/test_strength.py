@@ -2,9 +2,8 @@
 
 import numpy as np
 import pytest
-import pyvista as pv
 
-from conftest import draw
+from conftest import draw, spot_box_scene
 
 
 def _erode(mask, steps=2):
@@ -14,20 +13,10 @@ def _erode(mask, steps=2):
     return mask
 
 
-def _spot_scene():
-    pl = pv.Plotter(off_screen=True, lighting="none", window_size=(400, 300))
-    pl.add_mesh(pv.Plane(i_size=8, j_size=8), color="white", name="ground")
-    pl.add_mesh(pv.Cube(center=(0, 0, 1), x_length=1.5, y_length=1.5, z_length=1.5), name="box")
-    spot = pv.Light(position=(0.5, 0.3, 5), focal_point=(0, 0, 0), positional=True, cone_angle=60)
-    pl.add_light(spot)
-    pl.camera_position = [(7, -7, 7), (0, 0, 0.5), (0, 0, 1)]
-    return pl, spot
-
-
 @pytest.mark.parametrize("technique", ["cubemap", "map", "volume", "planar"])
 def test_strength_scales_the_removed_light_and_visibility_stays_geometric(technique):
     """A shadowed pixel keeps exactly 1 - strength of the light (ambient 0, one light)."""
-    pl, spot = _spot_scene()
+    pl, spot = spot_box_scene()
     plain = pl.screenshot(return_img=True).astype(int)
     pl.shadows.enable(technique=technique, filter="hard", strength=1.0)
     full = draw(pl).astype(int)
@@ -51,7 +40,7 @@ def test_strength_scales_the_removed_light_and_visibility_stays_geometric(techni
 
 
 def test_strength_for_enable_and_per_light_is_validated():
-    pl, spot = _spot_scene()
+    pl, spot = spot_box_scene()
     pl.shadows.enable(strength=0.25)
     assert pl.shadows.settings(spot).strength == 0.25
     with pytest.raises(ValueError, match=r"strength=1\.5 is out of range"):
