@@ -14,6 +14,7 @@ from pvshadows.frame import RendererShadows
 from pvshadows.gl.binding import check_window
 from pvshadows.lights import light_kind, light_pose
 from pvshadows.measure import Measurement, compare
+from pvshadows.naming import ActorNames
 from pvshadows.planes import require_plane
 from pvshadows.planner import SERVES, LightPlan
 from pvshadows.probe import read_visibility
@@ -54,6 +55,7 @@ class ShadowsComponent:
         self._defaults = ShadowSettings()
         self._per_light: dict[str, ShadowSettings] = {}
         self._lights: set[str] | None = None
+        self._names = ActorNames(plotter)
         self._reader = SceneReader(self._actor_name)
         self._renderers: list[RendererShadows] = []
         self._traced: tuple | None = None
@@ -442,11 +444,7 @@ class ShadowsComponent:
         return tuple(int(value) for value in np.atleast_1d(where))
 
     def _actor_name(self, actor: vtk.vtkActor) -> str:
-        key = vtk_id(actor)
-        for name, candidate in self._plotter.actors.items():
-            if vtk_id(candidate) == key:
-                return f"actor {name!r}"
-        return "an actor"
+        return self._names(actor)
 
     def _all_lights(self) -> list[tuple[vtk.vtkRenderer, vtk.vtkLight]]:
         found = []

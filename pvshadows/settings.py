@@ -8,6 +8,7 @@ and what is allowed.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, fields, replace
 from numbers import Integral, Real
 
@@ -34,6 +35,12 @@ QUALITY_PRESETS = {
     "draft": {"resolution": 512, "filter": "hard"},
     "balanced": {"resolution": 1024, "filter": "pcf", "pcf_taps": 16},
     "exact": {"resolution": 2048, "filter": "hard"},
+}
+#: Settings only some filters read, and those filters.
+FILTER_SETTINGS = {
+    "pcf_taps": ("pcf",),
+    "samples": ("random", "pcss"),
+    "filter_radius": ("random",),
 }
 #: Smallest and largest shadow-map resolution (texels per side of a face).
 RESOLUTION_RANGE = (64, 4096)
@@ -219,6 +226,17 @@ _CHECKS = {
 }
 
 
+def _warn_unused(changes: dict[str, object], filter_name: str) -> None:
+    for name, users in FILTER_SETTINGS.items():
+        if name in changes and filter_name not in users:
+            wanted = " or ".join(f"filter={user!r}" for user in users)
+            msg = (
+                f"{name}={changes[name]!r} has no effect with filter={filter_name!r}; "
+                f"only {wanted} uses it"
+            )
+            warnings.warn(msg, UserWarning, stacklevel=4)
+
+
 def preset(quality: str) -> ShadowSettings:
     """Return the settings a quality preset stands for.
 
@@ -269,6 +287,12 @@ def validated(base: ShadowSettings, **changes: object) -> ShadowSettings:
     ValueError
         For a value out of range or not among the allowed choices.
 
+    Warns
+    -----
+    UserWarning
+        For ``pcf_taps``, ``samples`` or ``filter_radius`` given with a
+        filter that does not read it (see :data:`FILTER_SETTINGS`).
+
     Examples
     --------
     >>> from pvshadows.settings import ShadowSettings, validated
@@ -289,6 +313,7 @@ def validated(base: ShadowSettings, **changes: object) -> ShadowSettings:
         raise TypeError(msg)
     checked = {name: _CHECKS[name](value) for name, value in changes.items()}
     result = replace(base, **checked)
+    _warn_unused(checked, result.filter)
     if result.filter == "pcss" and result.light_size <= 0.0:
         msg = (
             "filter='pcss' sizes penumbrae by the light's physical size: give light_size > 0 "
