@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+
+from pvshadows import __version__
 
 
 def _prefer_egl_without_display() -> None:
@@ -50,6 +53,12 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _bench(args: argparse.Namespace) -> int:
+    if importlib.util.find_spec("matplotlib") is None:
+        print(
+            "pvshadows bench: the frontier plot needs matplotlib: pip install 'pvshadows[bench]'",
+            file=sys.stderr,
+        )
+        return 1
     from pvshadows.bench import (
         BenchCase,
         all_cases,
@@ -93,7 +102,7 @@ def parser() -> argparse.ArgumentParser:
     Returns
     -------
     argparse.ArgumentParser
-        Parser with the ``demo``, ``info`` and ``bench`` commands.
+        Parser with the ``demo``, ``info`` and ``bench`` commands and ``--version``.
 
     Examples
     --------
@@ -104,6 +113,7 @@ def parser() -> argparse.ArgumentParser:
     main_parser = argparse.ArgumentParser(
         prog="pvshadows", description="Real-time shadows for PyVista, measured against ray tracing."
     )
+    main_parser.add_argument("--version", action="version", version=f"pvshadows {__version__}")
     commands = main_parser.add_subparsers(dest="command", required=True)
     demo = commands.add_parser("demo", help="render the demo scene with shadows to a PNG")
     demo.add_argument("--out", default="shadows.png", help="PNG to write (default shadows.png)")

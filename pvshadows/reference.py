@@ -29,7 +29,6 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, fields
 
 import numpy as np
-import trimesh
 
 from pvshadows.lights import LightKind, LightPose
 
@@ -383,6 +382,8 @@ def _check_options(light: LightPose, light_size: float, samples: int) -> tuple[f
 
 
 def _require_embree() -> type:
+    import trimesh  # only a reference pays for trimesh and Embree (0.3 s of imports)
+
     if not trimesh.ray.has_embree:
         raise ImportError(_INSTALL_HINT)
     from trimesh.ray.ray_pyembree import RayMeshIntersector
@@ -488,6 +489,8 @@ class _Triangles:
         corners = vertices[faces]
         normals, _ = _unit(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]))
         owner = np.concatenate([np.full(m.triangles.shape[0], i, np.int32) for i, m in chosen])
+        import trimesh
+
         mesh = trimesh.Trimesh(vertices=vertices, faces=faces, process=False, validate=False)
         intersector = intersector_type(mesh, scale_to_box=False)
         return cls(

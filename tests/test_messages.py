@@ -1,5 +1,9 @@
 """Messages a user reads: actors by their PyVista names, settings a filter ignores."""
 
+import importlib.metadata
+import os
+import subprocess
+import sys
 import warnings
 
 import numpy as np
@@ -64,3 +68,28 @@ def test_a_setting_the_filter_does_not_read_is_a_warning(settings, words):
         warnings.simplefilter("error")
         pl.shadows.configure(spot, filter="random", samples=64, filter_radius=3.0)
         pl.shadows.configure(spot, filter="pcf", pcf_taps=36)
+
+
+def _command(*args, env=None):
+    return subprocess.run(
+        [sys.executable, "-m", "pvshadows", *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+    )
+
+
+def test_version():
+    result = _command("--version")
+    assert result.returncode == 0
+    assert result.stdout.strip() == f"pvshadows {importlib.metadata.version('pvshadows')}"
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="X and EGL are Linux's")
+def test_the_command_without_a_display_opens_egl_without_vtks_x_warning(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "VTK_DEFAULT_OPENGL_WINDOW")}
+    result = _command("demo", "--out", str(tmp_path / "s.png"), "--size", "160x120", env=env)
+    assert result.returncode == 0, result.stderr
+    assert "bad X server connection" not in result.stderr + result.stdout
+    assert (tmp_path / "s.png").stat().st_size > 1000
