@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import os
 import sys
 from collections.abc import Sequence
@@ -53,12 +52,6 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _bench(args: argparse.Namespace) -> int:
-    if importlib.util.find_spec("matplotlib") is None:
-        print(
-            "pvshadows bench: the frontier plot needs matplotlib: pip install 'pvshadows[bench]'",
-            file=sys.stderr,
-        )
-        return 1
     from pvshadows.bench import (
         BenchCase,
         all_cases,
