@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Iterable
 from dataclasses import replace
 from numbers import Integral, Real
@@ -234,6 +235,15 @@ class ShadowsComponent:
             The actor.
         cast : bool, default: True
             ``False`` to let light pass through it.
+
+        Notes
+        -----
+        A caster's opacity does not reach its shadow: an actor drawn at
+        ``opacity=0.3`` casts the same full shadow as an opaque one, in every
+        technique and in :meth:`reference` alike (so :meth:`measure` judges
+        it as opaque), and :meth:`enable` warns about it. Opt such an actor
+        out with ``cast=False`` to let all the light through, or lower the
+        light's ``strength`` (:meth:`configure`) to lighten all its shadows.
 
         Examples
         --------
@@ -489,6 +499,17 @@ class ShadowsComponent:
                 actor = actors.GetNextActor()
                 if actor.GetVisibility() and actor.GetMapper() is not None:
                     self._reader.triangles_of(actor)
+                    self._warn_translucent(actor)
+
+    def _warn_translucent(self, actor: vtk.vtkActor) -> None:
+        opacity = actor.GetProperty().GetOpacity()
+        if opacity < 1.0 and self._reader.casting.get(vtk_id(actor), True):
+            msg = (
+                f"{self._actor_name(actor)} has opacity {opacity:g} but casts a full shadow: "
+                "pvshadows and its reference treat every caster as opaque; "
+                "pl.shadows.set_caster(actor, False) lets the light through it"
+            )
+            warnings.warn(msg, UserWarning, stacklevel=4)
 
     def _check_volumes(self, settings: ShadowSettings) -> None:
         """Ask for a stencil buffer before the first render; check casters for ``on_open="raise"``.
