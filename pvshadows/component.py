@@ -9,8 +9,8 @@ from numbers import Integral, Real
 
 import numpy as np
 import pyvista as pv
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.frame import RendererShadows
 from pvshadows.gl.binding import check_window
 from pvshadows.lights import light_kind, light_pose

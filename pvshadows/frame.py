@@ -12,8 +12,7 @@ from __future__ import annotations
 import warnings
 from collections.abc import Callable
 
-import vtk
-
+from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan, plan_frame

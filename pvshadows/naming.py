@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 
 import pyvista as pv
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.scene import vtk_id
 
 #: What PyVista puts in the names it makes up for actors added without ``name=``.

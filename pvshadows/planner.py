@@ -18,8 +18,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.culling import box_in_frustum, box_in_spot, frustum_planes
 from pvshadows.lights import LightKind, LightPose, casts_light, light_kind, light_pose
 from pvshadows.planes import sole_plane

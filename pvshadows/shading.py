@@ -20,8 +20,8 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.programs import glsl_source
 from pvshadows.glsl_library import shadow_functions
 from pvshadows.transforms import column_major

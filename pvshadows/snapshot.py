@@ -10,8 +10,8 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.scene import ActorTriangles, actor_matrix, read_triangles, vtk_id, world_bounds
 from pvshadows.transforms import translation
 

@@ -1,4 +1,4 @@
-"""What the first ``pl.shadows`` costs in imports: no ray tracer until a reference is asked for."""
+"""What the first ``pl.shadows`` imports: not all of VTK, no ray tracer until a reference."""
 
 import subprocess
 import sys
@@ -12,7 +12,7 @@ pl.add_mesh(pv.Sphere(center=(0, 0, 1)))
 pl.add_light(pv.Light(position=(0, 0, 3), positional=True, cone_angle=180))
 pl.shadows.enable()
 pl.screenshot(return_img=True)
-print(sorted({"trimesh", "embreex"} & set(sys.modules)))
+print(sorted({"trimesh", "embreex", "vtk"} & set(sys.modules)))
 pl.shadows.reference()
 print(sorted({"trimesh", "embreex"} & set(sys.modules)))
 """

@@ -31,8 +31,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.mask_target import MaskTexture
 from pvshadows.lights import LightKind
 from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
