@@ -239,11 +239,14 @@ class ShadowsComponent:
         Notes
         -----
         A caster's opacity does not reach its shadow: an actor drawn at
-        ``opacity=0.3`` casts the same full shadow as an opaque one, in every
-        technique and in :meth:`reference` alike (so :meth:`measure` judges
-        it as opaque), and :meth:`enable` warns about it. Opt such an actor
-        out with ``cast=False`` to let all the light through, or lower the
-        light's ``strength`` (:meth:`configure`) to lighten all its shadows.
+        ``opacity=0.3`` casts the same full shadow as an opaque one in every
+        technique, and :meth:`enable` warns about it. :meth:`reference` is
+        physical: each of the actor's surfaces a shadow ray crosses lets
+        ``1 - opacity`` of the light through (a closed body twice, as VTK's
+        blending draws both its sides), so :meth:`measure` shows what the
+        full shadow costs. Opt such an actor out with ``cast=False`` to let
+        all the light through, or lower the light's ``strength``
+        (:meth:`configure`) to lighten all its shadows.
 
         Examples
         --------
@@ -506,8 +509,9 @@ class ShadowsComponent:
         if opacity < 1.0 and self._reader.casting.get(vtk_id(actor), True):
             msg = (
                 f"{self._actor_name(actor)} has opacity {opacity:g} but casts a full shadow: "
-                "pvshadows and its reference treat every caster as opaque; "
-                "pl.shadows.set_caster(actor, False) lets the light through it"
+                "pvshadows draws every caster opaque, while reference() lets 1 - opacity "
+                "through each of its surfaces (measure() shows the difference); "
+                "pl.shadows.set_caster(actor, False) lets all the light through it"
             )
             warnings.warn(msg, UserWarning, stacklevel=4)
 
@@ -578,7 +582,7 @@ class ShadowsComponent:
             (width, height),
             pose.key(),
             (float(light_size), int(samples)),
-            tuple((*a.key(), a.caster, a.receiver) for a in snapshot.actors),
+            tuple((*a.key(), a.caster, a.receiver, _opacity(a.actor)) for a in snapshot.actors),
         )
         if self._traced is None or self._traced[0] != key:
             meshes = [
@@ -587,6 +591,7 @@ class ShadowsComponent:
                     a.triangles.triangles.astype(np.int64),
                     caster=a.caster,
                     receiver=a.receiver,
+                    opacity=_opacity(a.actor),
                 )
                 for a in snapshot.actors
             ]
@@ -595,3 +600,7 @@ class ShadowsComponent:
             )
             self._traced = (key, result)
         return self._traced[1]
+
+
+def _opacity(actor: vtk.vtkActor) -> float:
+    return min(max(float(actor.GetProperty().GetOpacity()), 0.0), 1.0)

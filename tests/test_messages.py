@@ -93,19 +93,3 @@ def test_the_command_without_a_display_opens_egl_without_vtks_x_warning(tmp_path
     assert result.returncode == 0, result.stderr
     assert "bad X server connection" not in result.stderr + result.stdout
     assert (tmp_path / "s.png").stat().st_size > 1000
-
-
-def test_a_translucent_caster_casts_a_full_shadow_as_documented_and_enable_warns():
-    pl, spot = spot_box_scene()
-    pl.actors["box"].prop.opacity = 0.3
-    with pytest.warns(UserWarning, match="actor 'box' has opacity 0.3 but casts a full shadow"):
-        pl.shadows.enable(technique="volume")
-    error = pl.shadows.measure(spot)
-    assert error.shadow_pixels > 1000 and error.misclassified < 0.001
-    shown = pl.shadows.visibility(spot)
-    assert np.nanmin(shown) == 0.0
-    pl.shadows.set_caster(pl.actors["box"], False)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        pl.shadows.enable(technique="volume")
-    assert pl.shadows.measure(spot).shadow_pixels == 0
