@@ -24,6 +24,7 @@ from pvshadows.report import FrameReport
 from pvshadows.scene import vtk_id, world_points
 from pvshadows.settings import ShadowSettings, preset, validated
 from pvshadows.snapshot import SceneReader
+from pvshadows.translucency import transmittance
 
 
 class ShadowsComponent:
@@ -129,7 +130,7 @@ class ShadowsComponent:
         chosen = None
         if lights is not None:
             chosen = {vtk_id(self._check_light(light, "lights")) for light in lights}
-        self._check_scene()
+        self._check_scene(warn_translucent=defaults.technique != "planar")
         self._check_volumes(defaults)
         if self._plotter.render_window is not None:
             check_window(self._plotter.render_window)
@@ -238,13 +239,13 @@ class ShadowsComponent:
 
         Notes
         -----
-        A caster's opacity does not reach its shadow: an actor drawn at
-        ``opacity=0.3`` casts the same full shadow as an opaque one in every
-        technique, and :meth:`enable` warns about it. :meth:`reference` is
-        physical: each of the actor's surfaces a shadow ray crosses lets
-        ``1 - opacity`` of the light through (a closed body twice, as VTK's
-        blending draws both its sides), so :meth:`measure` shows what the
-        full shadow costs. Opt such an actor out with ``cast=False`` to let
+        :meth:`reference` is physical about a caster's opacity: each of its
+        surfaces a shadow ray crosses lets ``1 - opacity`` of the light
+        through (a closed body twice, as VTK's blending draws both its
+        sides). ``technique="planar"`` does the same; the other techniques
+        draw an actor at ``opacity=0.3`` as the same full shadow as an
+        opaque one, :meth:`enable` warns about it, and :meth:`measure` shows
+        what it costs. Opt such an actor out with ``cast=False`` to let
         all the light through, or lower the light's ``strength``
         (:meth:`configure`) to lighten all its shadows.
 
@@ -491,7 +492,7 @@ class ShadowsComponent:
             raise TypeError(msg)
         return actor
 
-    def _check_scene(self) -> None:
+    def _check_scene(self, *, warn_translucent: bool) -> None:
         for _, light in self._all_lights():
             if light.GetSwitch():
                 light_pose(light)
@@ -502,15 +503,16 @@ class ShadowsComponent:
                 actor = actors.GetNextActor()
                 if actor.GetVisibility() and actor.GetMapper() is not None:
                     self._reader.triangles_of(actor)
-                    self._warn_translucent(actor)
+                    if warn_translucent:
+                        self._warn_translucent(actor)
 
     def _warn_translucent(self, actor: vtk.vtkActor) -> None:
         opacity = actor.GetProperty().GetOpacity()
         if opacity < 1.0 and self._reader.casting.get(vtk_id(actor), True):
             msg = (
                 f"{self._actor_name(actor)} has opacity {opacity:g} but casts a full shadow: "
-                "pvshadows draws every caster opaque, while reference() lets 1 - opacity "
-                "through each of its surfaces (measure() shows the difference); "
+                "only technique='planar' lets 1 - opacity through each of its surfaces, as "
+                "reference() does (measure() shows the difference); "
                 "pl.shadows.set_caster(actor, False) lets all the light through it"
             )
             warnings.warn(msg, UserWarning, stacklevel=4)
@@ -582,7 +584,9 @@ class ShadowsComponent:
             (width, height),
             pose.key(),
             (float(light_size), int(samples)),
-            tuple((*a.key(), a.caster, a.receiver, _opacity(a.actor)) for a in snapshot.actors),
+            tuple(
+                (*a.key(), a.caster, a.receiver, transmittance(a.actor)) for a in snapshot.actors
+            ),
         )
         if self._traced is None or self._traced[0] != key:
             meshes = [
@@ -591,7 +595,7 @@ class ShadowsComponent:
                     a.triangles.triangles.astype(np.int64),
                     caster=a.caster,
                     receiver=a.receiver,
-                    opacity=_opacity(a.actor),
+                    opacity=1.0 - transmittance(a.actor),
                 )
                 for a in snapshot.actors
             ]
@@ -600,7 +604,3 @@ class ShadowsComponent:
             )
             self._traced = (key, result)
         return self._traced[1]
-
-
-def _opacity(actor: vtk.vtkActor) -> float:
-    return min(max(float(actor.GetProperty().GetOpacity()), 0.0), 1.0)

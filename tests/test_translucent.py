@@ -56,3 +56,25 @@ def test_a_translucent_caster_casts_a_full_shadow_that_measure_judges(opacity, t
         warnings.simplefilter("error")
         pl.shadows.enable(technique="volume")
     assert pl.shadows.measure(spot).shadow_pixels == 0
+
+
+@pytest.mark.parametrize("opacity", [0.3, 0.6])
+def test_planar_shadows_let_the_casters_transmittance_through_like_the_reference(opacity):
+    pl, spot = spot_box_scene()
+    pl.actors["box"].prop.opacity = opacity
+    pl.shadows.set_receiver(pl.actors["box"], False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # planar shadows honour opacity: no warning
+        pl.shadows.enable(technique="planar")
+    shown = pl.shadows.visibility(spot)
+    exact = pl.shadows.reference(spot)
+    through = (1.0 - opacity) ** 2  # the box's top and bottom
+    shadow = np.isfinite(shown) & (np.abs(exact - through) < 1e-6)
+    assert shadow.sum() > 1000
+    inner = shadow & (np.abs(shown - through) < 0.01)
+    assert inner.sum() > 0.98 * shadow.sum()  # 8-bit mask: within 0.01 but at the outline
+    error = pl.shadows.measure(spot)
+    assert error.rmse < 0.02 and error.misclassified < 0.002
+    pl.actors["box"].prop.opacity = 1.0
+    pl.render()
+    assert np.nanmin(pl.shadows.visibility(spot)[shadow]) == 0.0  # the mask follows opacity

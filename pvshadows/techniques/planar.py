@@ -44,6 +44,7 @@ from pvshadows.shading import LightShading
 from pvshadows.snapshot import ActorState
 from pvshadows.techniques.base import FrameContext
 from pvshadows.transforms import translation, world_to_view
+from pvshadows.translucency import transmittance
 
 _PASS = "planar mask"
 
@@ -207,6 +208,7 @@ def flat_draws(
                 projection,
                 view,
             ),
+            transmittance(caster.actor),
         )
         for caster in casters
     ]
@@ -313,7 +315,7 @@ class PlanarTechnique:
                 camera.GetProjectionTransformMatrix(context.renderer.GetTiledAspectRatio(), -1, 1)
             ).tobytes(),
             state.mask.size,
-            tuple(c.key() for c in casters),
+            tuple((*c.key(), transmittance(c.actor)) for c in casters),
         )
         if key == state.key:
             return [
