@@ -1,12 +1,16 @@
 #version 150
-// Planar shadows: every flattened caster writes "in shadow" (0) into the
-// light's mask, which was cleared to "lit" (1). Writing the same value
-// however many triangles cover a pixel keeps the shadow the same darkness
-// where flattened casters overlap.
+// Planar shadows: every flattened caster writes the share of light one of its
+// surfaces lets through (1 - opacity; 0 for an opaque caster) into the
+// light's mask, which was cleared to "lit" (1), blended multiplicatively. A
+// shadow ray through a closed caster crosses two of its surfaces, and its
+// flattened image covers each pixel twice, so the mask holds what the ray
+// brings; where opaque casters overlap the shadow stays exactly 0.
+
+uniform float transmittance;
 
 out vec4 fragOutput0;
 
 void main()
 {
-  fragOutput0 = vec4(0.0);
+  fragOutput0 = vec4(transmittance);
 }

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 import pyvista as pv
-import vtk
+
+from pvshadows import _vtk as vtk
 
 #: Smallest contribution of the light (0..1 colour) for a pixel to be judged.
 MIN_CONTRIBUTION = 4.0 / 255.0

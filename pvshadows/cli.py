@@ -8,6 +8,8 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+from pvshadows import __version__
+
 
 def _prefer_egl_without_display() -> None:
     """Open EGL windows directly when there is no X display, instead of trying X first.
@@ -95,7 +97,7 @@ def parser() -> argparse.ArgumentParser:
     Returns
     -------
     argparse.ArgumentParser
-        Parser with the ``demo``, ``info`` and ``bench`` commands.
+        Parser with the ``demo``, ``info`` and ``bench`` commands and ``--version``.
 
     Examples
     --------
@@ -106,6 +108,7 @@ def parser() -> argparse.ArgumentParser:
     main_parser = argparse.ArgumentParser(
         prog="pvshadows", description="Real-time shadows for PyVista, measured against ray tracing."
     )
+    main_parser.add_argument("--version", action="version", version=f"pvshadows {__version__}")
     commands = main_parser.add_subparsers(dest="command", required=True)
     demo = commands.add_parser("demo", help="render the demo scene with shadows to a PNG")
     demo.add_argument("--out", default="shadows.png", help="PNG to write (default shadows.png)")

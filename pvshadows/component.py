@@ -9,12 +9,13 @@ from numbers import Integral, Real
 
 import numpy as np
 import pyvista as pv
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.frame import RendererShadows
 from pvshadows.gl.binding import check_window
 from pvshadows.lights import light_kind, light_pose
 from pvshadows.measure import Measurement, compare
+from pvshadows.naming import ActorNames
 from pvshadows.planes import require_plane
 from pvshadows.planner import AUTO_TECHNIQUE, SERVES, LightPlan
 from pvshadows.probe import read_visibility, require_drawn
@@ -29,6 +30,7 @@ from pvshadows.report import FrameReport
 from pvshadows.scene import vtk_id, world_points
 from pvshadows.settings import ShadowSettings, preset, validated
 from pvshadows.snapshot import SceneReader
+from pvshadows.translucency import transmittance
 
 
 class ShadowsComponent:
@@ -61,6 +63,7 @@ class ShadowsComponent:
         self._defaults = ShadowSettings()
         self._per_light: dict[str, ShadowSettings] = {}
         self._lights: set[str] | None = None
+        self._names = ActorNames(plotter)
         self._reader = SceneReader(self._actor_name)
         self._renderers: list[RendererShadows] = []
         self._traced: tuple | None = None
@@ -111,12 +114,14 @@ class ShadowsComponent:
             Defaults for every light: ``resolution``, ``filter``,
             ``pcf_taps``, ``samples``, ``filter_radius``, ``light_size``,
             ``passes``, ``bias``, ``slope_bias``, ``normal_offset``, and for
-            volumes ``zmode``, ``extrude``, ``on_open`` (see
-            :class:`pvshadows.settings.ShadowSettings`). ``bias=0,
-            slope_bias=0, normal_offset=0`` compares each lit surface with
-            its own depth in the map, so about half of it shadows itself in
-            speckles (acne, 43 % of lit pixels in the standard scene); that
-            warns, as it is only useful to see what the biases do.
+            volumes ``zmode``, ``extrude``, ``on_open``, and ``strength``
+            (0 to 1: how much of a shadowed light's contribution is removed,
+            1 by default; see :class:`pvshadows.settings.ShadowSettings`).
+            ``bias=0, slope_bias=0, normal_offset=0`` compares each lit
+            surface with its own depth in the map, so about half of it
+            shadows itself in speckles (acne, 43 % of lit pixels in the
+            standard scene); that warns, as it is only useful to see what the
+            biases do.
 
         Raises
         ------
@@ -141,7 +146,7 @@ class ShadowsComponent:
         chosen = None
         if lights is not None:
             chosen = {vtk_id(self._check_light(light, "lights")) for light in _light_list(lights)}
-        self._check_scene()
+        self._check_scene(warn_translucent=defaults.technique != "planar")
         self._warn_unserved(defaults, chosen)
         self._check_volumes(defaults)
         if self._plotter.render_window is not None:
@@ -189,8 +194,8 @@ class ShadowsComponent:
             Any setting of :class:`pvshadows.settings.ShadowSettings`
             (``technique``, ``resolution``, ``filter``, ``pcf_taps``,
             ``samples``, ``light_size``, ``passes``, the biases, ``zmode``,
-            ``extrude``, ``on_open``, ...); ``quality`` starts from that
-            preset instead of the light's current settings.
+            ``extrude``, ``on_open``, ``strength``, ...); ``quality`` starts
+            from that preset instead of the light's current settings.
 
         Raises
         ------
@@ -248,6 +253,18 @@ class ShadowsComponent:
             The actor.
         cast : bool, default: True
             ``False`` to let light pass through it.
+
+        Notes
+        -----
+        :meth:`reference` is physical about a caster's opacity: each of its
+        surfaces a shadow ray crosses lets ``1 - opacity`` of the light
+        through (a closed body twice, as VTK's blending draws both its
+        sides). ``technique="planar"`` does the same; the other techniques
+        draw an actor at ``opacity=0.3`` as the same full shadow as an
+        opaque one, :meth:`enable` warns about it, and :meth:`measure` shows
+        what it costs. Opt such an actor out with ``cast=False`` to let
+        all the light through, or lower the light's ``strength``
+        (:meth:`configure`) to lighten all its shadows.
 
         Examples
         --------
@@ -385,6 +402,13 @@ class ShadowsComponent:
             pixel shows no receiving surface. 0 where the visible side faces
             away from the light.
 
+        Notes
+        -----
+        This is the geometric visibility, the same at every ``strength``:
+        a receiver shows ``1 - strength * (1 - visibility)`` of the light's
+        diffuse and specular terms, so :meth:`measure` judges the shadow
+        test itself against :meth:`reference` whatever the strength.
+
         Raises
         ------
         TypeError
@@ -472,9 +496,7 @@ class ShadowsComponent:
         return tuple(int(value) for value in np.atleast_1d(where))
 
     def _actor_name(self, actor: vtk.vtkActor) -> str:
-        # PyVista keeps an actor's name on the actor itself: no walk of its collections.
-        name = getattr(actor, "name", None)
-        return f"actor {name!r}" if name else "an actor"
+        return self._names(actor)
 
     def _all_lights(self) -> list[tuple[vtk.vtkRenderer, vtk.vtkLight]]:
         return [
@@ -544,7 +566,7 @@ class ShadowsComponent:
             )
             warnings.warn(msg, stacklevel=3)
 
-    def _check_scene(self) -> None:
+    def _check_scene(self, *, warn_translucent: bool) -> None:
         for _, light in self._all_lights():
             if light.GetSwitch():
                 light_pose(light)
@@ -555,6 +577,19 @@ class ShadowsComponent:
                 actor = actors.GetNextActor()
                 if actor.GetVisibility() and actor.GetMapper() is not None:
                     self._reader.triangles_of(actor)
+                    if warn_translucent:
+                        self._warn_translucent(actor)
+
+    def _warn_translucent(self, actor: vtk.vtkActor) -> None:
+        opacity = actor.GetProperty().GetOpacity()
+        if opacity < 1.0 and self._reader.casting.get(vtk_id(actor), True):
+            msg = (
+                f"{self._actor_name(actor)} has opacity {opacity:g} but casts a full shadow: "
+                "only technique='planar' lets 1 - opacity through each of its surfaces, as "
+                "reference() does (measure() shows the difference); "
+                "pl.shadows.set_caster(actor, False) lets all the light through it"
+            )
+            warnings.warn(msg, UserWarning, stacklevel=4)
 
     def _check_volumes(self, settings: ShadowSettings) -> None:
         """Ask for a stencil buffer before the first render; check casters for ``on_open="raise"``.
@@ -621,7 +656,9 @@ class ShadowsComponent:
             (width, height),
             pose.key(),
             (float(light_size), int(samples)),
-            tuple((*a.key(), a.caster, a.receiver) for a in snapshot.actors),
+            tuple(
+                (*a.key(), a.caster, a.receiver, transmittance(a.actor)) for a in snapshot.actors
+            ),
         )
         if self._traced is None or self._traced[0] != key:
             require_traceable(
@@ -633,6 +670,7 @@ class ShadowsComponent:
                     a.triangles.triangles.astype(np.int64),
                     caster=a.caster,
                     receiver=a.receiver,
+                    opacity=1.0 - transmittance(a.actor),
                 )
                 for a in snapshot.actors
             ]

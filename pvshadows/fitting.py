@@ -12,8 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.lights import LightPose
 from pvshadows.snapshot import ActorState
 from pvshadows.transforms import look_rotation, perspective, translation

@@ -14,8 +14,7 @@ import warnings
 from collections.abc import Callable
 from pathlib import Path
 
-import vtk
-
+from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan, plan_frame
@@ -23,7 +22,7 @@ from pvshadows.reach import ReachCache
 from pvshadows.receivers import ReceiverEdits
 from pvshadows.report import FrameFailure, FrameReport, LightReport
 from pvshadows.settings import ShadowSettings
-from pvshadows.shading import PROBE_UNIFORM
+from pvshadows.shading import PROBE_UNIFORM, strength_uniform
 from pvshadows.snapshot import SceneReader, Snapshot
 from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.base import FrameContext, Technique
@@ -147,6 +146,7 @@ class RendererShadows:
             technique = self.technique(plan.technique)
             light_report.passes = technique.update(plan, context)
             shadings.append(technique.shading(plan))
+            uniforms[strength_uniform(plan.vtk_index)] = plan.settings.strength
             if technique not in self._active:
                 self._active.append(technique)
             uniforms.update(technique.activate(plan, context))

@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pyvista as pv
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import describe_binding, opengl_for
 
 #: Each row of the techniques table: label, light kinds tried, settings, needs a geometry shader.

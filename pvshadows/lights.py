@@ -11,7 +11,8 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 import numpy as np
-import vtk
+
+from pvshadows import _vtk as vtk
 
 
 class LightKind(StrEnum):

@@ -6,6 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pvshadows.tables import html_table
+
 
 @dataclass(frozen=True)
 class Measurement:
@@ -26,6 +28,10 @@ class Measurement:
         Root mean square difference of visibility over lit-side pixels.
     lit_pixels : int
         Number of lit-side pixels compared.
+    shadow_pixels : int
+        How many of them the reference sees wholly or partly in shadow; 0 when the light
+        casts no shadow in view, so the figures only say that none was
+        drawn where there is none.
     """
 
     misclassified: float
@@ -33,14 +39,44 @@ class Measurement:
     missed_shadow: float
     rmse: float
     lit_pixels: int
+    shadow_pixels: int = 0
+
+    @property
+    def verdict(self) -> str:
+        """What the figures stand on, in words: a shadow in view, none, or no lit pixel."""
+        if not self.lit_pixels:
+            return "the light reaches no receiver in view: nothing was compared"
+        if not self.shadow_pixels:
+            return "the light casts no shadow in view: only false shadows can be judged"
+        return f"{self.shadow_pixels} of the compared pixels are in shadow"
 
     def __str__(self) -> str:
+        if not self.shadow_pixels:
+            return f"{self.verdict} ({self._figures()})"
+        return self._figures()
+
+    def _figures(self) -> str:
         return (
             f"misclassified {100 * self.misclassified:.3f} % of {self.lit_pixels} lit-side pixels "
             f"(false shadow {100 * self.false_shadow:.3f} %, "
             f"missed {100 * self.missed_shadow:.3f} %), "
             f"RMSE {self.rmse:.4f}"
         )
+
+    def _repr_pretty_(self, printer, cycle: bool) -> None:
+        printer.text(str(self))
+
+    def _repr_html_(self) -> str:
+        rows = [
+            ["misclassified", f"{100 * self.misclassified:.3f} %", "lit-side pixels"],
+            ["false shadow", f"{100 * self.false_shadow:.3f} %", "of the pixels lit in truth"],
+            ["missed shadow", f"{100 * self.missed_shadow:.3f} %", "of the pixels dark in truth"],
+            ["RMSE", f"{self.rmse:.4f}", "visibility over lit-side pixels"],
+            ["lit-side pixels", str(self.lit_pixels), "compared"],
+            ["in shadow", str(self.shadow_pixels), "by the reference"],
+        ]
+        caption = f"pvshadows against ray tracing: {self.verdict}"
+        return html_table(caption, ["", "value", "of"], rows)
 
 
 def _share(mask: np.ndarray, among: np.ndarray) -> float:
@@ -86,4 +122,5 @@ def compare(shown: np.ndarray, reference) -> Measurement:
         missed_shadow=_share(~shown_dark, lit & exact_dark),
         rmse=float(np.sqrt((difference**2).sum() / count)) if count else 0.0,
         lit_pixels=count,
+        shadow_pixels=int((lit & (exact < 1.0)).sum()),
     )

@@ -27,8 +27,8 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.scene import ActorTriangles
 from pvshadows.snapshot import ActorState
 

@@ -18,8 +18,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.culling import boxes_in_frustum
 from pvshadows.lights import LightKind, LightPose, casts_light, light_kind, light_pose
 from pvshadows.planes import sole_plane

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 import pyvista as pv
-import vtk
+
+from pvshadows import _vtk as vtk
 
 
 def _window_pixels(window: vtk.vtkRenderWindow) -> np.ndarray:

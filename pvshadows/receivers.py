@@ -13,8 +13,8 @@ frame where nothing changed makes no VTK call here at all.
 from __future__ import annotations
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.shading import (
     PROBE_UNIFORM,
     LightShading,

@@ -29,7 +29,6 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, fields
 
 import numpy as np
-import trimesh
 
 from pvshadows.lights import LightKind, LightPose
 
@@ -67,6 +66,10 @@ _BOX_MARGIN = 1e-3
 """Margin around the scene's bounds, as a fraction of its diagonal, where primary rays start."""
 
 _CHUNK_RAYS = 1 << 18
+#: Most translucent surfaces a shadow ray goes through; a ray meeting more is dark.
+_MAX_CROSSINGS = 32
+#: How far past a translucent surface a shadow ray starts again (local frame, float32-safe).
+_CROSSING_STEP = 1e-5
 """Most rays handed to Embree, and held in memory, at once."""
 
 _BLOCK_PIXELS = 1 << 16
@@ -95,12 +98,16 @@ class SceneMesh:
     receiver : bool, default: True
         Whether the surface shows shadows; pixels whose visible surface is
         not a receiver are NaN in :attr:`ReferenceResult.visibility`.
+    opacity : float, default: 1.0
+        Share of the light a caster's surface stops, 0 to 1: each of its
+        surfaces a shadow ray crosses lets ``1 - opacity`` through (a closed
+        body twice, as VTK's blending draws both its sides).
 
     Raises
     ------
     ValueError
-        If the arrays have the wrong shape, points are not finite or an
-        index is out of range.
+        If the arrays have the wrong shape, points are not finite, an
+        index is out of range or the opacity is not in [0, 1].
 
     Examples
     --------
@@ -118,8 +125,12 @@ class SceneMesh:
     triangles: np.ndarray
     caster: bool = True
     receiver: bool = True
+    opacity: float = 1.0
 
     def __post_init__(self) -> None:
+        if not 0.0 <= self.opacity <= 1.0:
+            msg = f"SceneMesh opacity must be from 0 to 1, got {self.opacity!r}"
+            raise ValueError(msg)
         points = np.asarray(self.points, dtype=np.float64)
         triangles = np.asarray(self.triangles)
         if triangles.size == 0:
@@ -389,6 +400,7 @@ def trace_reference(
             camera=_Camera.of(view, frame),
             emitter=_Emitter.from_pose(light, frame, light_size, samples),
             receivers=np.array([mesh.receiver for mesh in meshes], dtype=bool),
+            transmittance=np.array([1.0 - mesh.opacity for mesh in meshes]),
         )
         rng = np.random.default_rng(seed)
         for pixels in _blocks(n_pixels):
@@ -427,6 +439,8 @@ def _check_options(light: LightPose, light_size: float, samples: int) -> tuple[f
 
 
 def _require_embree() -> type:
+    import trimesh  # only a reference pays for trimesh and Embree (0.3 s of imports)
+
     if not trimesh.ray.has_embree:
         raise ImportError(_INSTALL_HINT)
     from trimesh.ray.ray_pyembree import RayMeshIntersector
@@ -532,6 +546,8 @@ class _Triangles:
         corners = vertices[faces]
         normals, _ = _unit(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]))
         owner = np.concatenate([np.full(m.triangles.shape[0], i, np.int32) for i, m in chosen])
+        import trimesh
+
         mesh = trimesh.Trimesh(vertices=vertices, faces=faces, process=False, validate=False)
         intersector = intersector_type(mesh, scale_to_box=False)
         return cls(
@@ -746,6 +762,7 @@ class _Tracer:
     camera: _Camera
     emitter: _Emitter
     receivers: np.ndarray
+    transmittance: np.ndarray
 
     def trace(self, pixels: np.ndarray, variation: np.ndarray, out: _FlatResult) -> None:
         """Fill ``out`` at ``pixels``; ``variation`` holds their sample pattern jitters."""
@@ -807,6 +824,32 @@ class _Tracer:
             span = distance[pixel, sample] - LIGHT_CLEARANCE
             reach = np.minimum(span, np.maximum(leave, 0.0) + _BOX_MARGIN)
             origins = points[pixel] + toward * reach[:, None]
-            triangle, blocker = self.shadow.first_hit(origins, -toward)
-            open_ray[pixel, sample] = (triangle < 0) | (blocker >= reach - RAY_TOLERANCE)
+            passed = open_ray.astype(np.float64)
+            passed[pixel, sample] = self._through(origins, -toward, reach)
+            return passed.sum(axis=1) / self.emitter.samples
         return open_ray.sum(axis=1) / self.emitter.samples
+
+    def _through(
+        self, origins: np.ndarray, directions: np.ndarray, reach: np.ndarray
+    ) -> np.ndarray:
+        """Share of light each shadow ray brings over ``reach``: 0 or 1, less through translucency.
+
+        A ray that meets a translucent surface before its end goes on past it
+        with ``1 - opacity`` of its light, up to :data:`_MAX_CROSSINGS` times.
+        """
+        passed = np.ones(origins.shape[0])
+        going = np.arange(origins.shape[0])
+        for _ in range(_MAX_CROSSINGS):
+            triangle, blocker = self.shadow.first_hit(origins[going], directions[going])
+            blocked = (triangle >= 0) & (blocker < reach[going] - RAY_TOLERANCE)
+            through = np.where(blocked, self.transmittance[self.shadow.owner[triangle]], 1.0)
+            passed[going] *= through
+            onward = blocked & (through > 0.0)
+            going, step = going[onward], blocker[onward] + _CROSSING_STEP
+            if not going.size:
+                break
+            origins[going] += directions[going] * step[:, None]
+            reach[going] -= step
+        else:
+            passed[going] = 0.0
+        return passed

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from pvshadows.tables import html_table
+
 
 @dataclass
 class PassReport:
@@ -143,6 +145,8 @@ class FrameReport:
     >>> frame = FrameReport([LightReport(0, "point", "cubemap", [reused])])
     >>> frame.passes_run
     0
+    >>> "<td>reused</td>" in frame._repr_html_()  # how Jupyter shows it
+    True
     """
 
     lights: list[LightReport] = field(default_factory=list)
@@ -171,3 +175,24 @@ class FrameReport:
         if self.failure is not None:
             lines.insert(0, str(self.failure))
         return "\n".join(lines)
+
+    def _repr_pretty_(self, printer, cycle: bool) -> None:
+        printer.text(str(self))
+
+    def _repr_html_(self) -> str:
+        rows = []
+        for light in self.lights:
+            where = f"subplot {light.subplot}, " if light.subplot is not None else ""
+            name = f"{where}light {light.index} ({light.kind})"
+            technique = light.technique or "no shadows"
+            for step in light.passes:
+                ms = f"{step.ms:.3f}" if step.ms is not None else None
+                rows.append([name, technique, step.name, step.status, ms, step.detail])
+            rows.extend([name, technique, None, None, None, note] for note in light.notes)
+            if not light.passes and not light.notes:
+                rows.append([name, technique, None, None, None, None])
+        caption = (
+            f"pvshadows frame: {len(self.lights)} light(s), {self.passes_run} pass(es) run, "
+            f"{self.gpu_ms:.3f} GPU ms"
+        )
+        return html_table(caption, ["light", "technique", "pass", "status", "GPU ms", "why"], rows)

@@ -12,8 +12,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pyvista as pv
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.closed import is_closed_outward
 
 

@@ -38,6 +38,12 @@ QUALITY_PRESETS = {
 }
 #: The settings that move a shadow-map lookup off the surface it shades.
 BIASES = ("bias", "slope_bias", "normal_offset")
+#: Settings only some filters read, and those filters.
+FILTER_SETTINGS = {
+    "pcf_taps": ("pcf",),
+    "samples": ("random", "pcss"),
+    "filter_radius": ("random",),
+}
 #: Smallest and largest shadow-map resolution (texels per side of a face).
 RESOLUTION_RANGE = (64, 4096)
 
@@ -131,6 +137,7 @@ class ShadowSettings:
     zmode: str = "auto"
     extrude: str = "gpu"
     on_open: str = "fallback"
+    strength: float = 1.0
 
 
 def _choice(name: str, value: object, allowed: tuple) -> object:
@@ -175,6 +182,16 @@ def _light_size(value: object) -> float:
     return float(value)
 
 
+def _strength(value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real):
+        msg = f"strength must be a number from 0 (no shadow) to 1 (full shadow), got {value!r}"
+        raise TypeError(msg)
+    if not (math.isfinite(value) and 0.0 <= value <= 1.0):
+        msg = f"strength={value} is out of range; it must be from 0 (no shadow) to 1 (full shadow)"
+        raise ValueError(msg)
+    return float(value)
+
+
 def _flag(name: str, value: object) -> bool:
     if not isinstance(value, bool):
         msg = f"{name} must be True or False, got {value!r}"
@@ -209,7 +226,19 @@ _CHECKS = {
     "zmode": lambda v: _choice("zmode", v, ZMODES),
     "extrude": lambda v: _choice("extrude", v, EXTRUDE),
     "on_open": lambda v: _choice("on_open", v, ON_OPEN),
+    "strength": _strength,
 }
+
+
+def _warn_unused(changes: dict[str, object], filter_name: str) -> None:
+    for name, users in FILTER_SETTINGS.items():
+        if name in changes and filter_name not in users:
+            wanted = " or ".join(f"filter={user!r}" for user in users)
+            msg = (
+                f"{name}={changes[name]!r} has no effect with filter={filter_name!r}; "
+                f"only {wanted} uses it"
+            )
+            warnings.warn(msg, UserWarning, stacklevel=4)
 
 
 def preset(quality: str) -> ShadowSettings:
@@ -262,6 +291,12 @@ def validated(base: ShadowSettings, **changes: object) -> ShadowSettings:
     ValueError
         For a value out of range or not among the allowed choices.
 
+    Warns
+    -----
+    UserWarning
+        For ``pcf_taps``, ``samples`` or ``filter_radius`` given with a
+        filter that does not read it (see :data:`FILTER_SETTINGS`).
+
     Examples
     --------
     >>> from pvshadows.settings import ShadowSettings, validated
@@ -289,6 +324,7 @@ def validated(base: ShadowSettings, **changes: object) -> ShadowSettings:
             "shadow volumes and planar shadows do not use the biases",
             stacklevel=3,
         )
+    _warn_unused(checked, result.filter)
     if result.filter == "pcss" and result.light_size <= 0.0:
         msg = (
             "filter='pcss' sizes penumbrae by the light's physical size: give light_size > 0 "

@@ -2,7 +2,9 @@
 
 Only the lighting code of each receiver's fragment shader changes: for every
 shadowed light, the light's diffuse and specular terms (Phong) or its
-radiance (PBR) are multiplied by that light's visibility. Ambient light and
+radiance (PBR) are multiplied by ``1 - strength * (1 - visibility)``: the
+light's visibility, softened by its shadow ``strength`` (a uniform, so
+changing it recompiles nothing). Ambient light and
 unshadowed lights are untouched. The edits are ``vtkShaderProperty``
 replacements applied after VTK's own substitutions, and the values they read
 are the property's custom uniforms, which VTK uploads at every draw, so a
@@ -18,8 +20,8 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.programs import glsl_source
 from pvshadows.glsl_library import shadow_functions
 from pvshadows.transforms import column_major
@@ -99,6 +101,32 @@ class LightShading:
         return self.elsewhere or LightShading(self.vtk_index, "1.0")
 
 
+def strength_uniform(vtk_index: int) -> str:
+    """Return the name of the custom uniform holding a light's shadow strength.
+
+    A receiver keeps ``1 - strength * (1 - visibility)`` of the light's
+    diffuse and specular terms; the probe (:meth:`ShaderEdits.set_probe`)
+    shows the visibility itself.
+
+    Parameters
+    ----------
+    vtk_index : int
+        The light's index among the renderer's switched-on lights.
+
+    Returns
+    -------
+    str
+        The uniform's name.
+
+    Examples
+    --------
+    >>> from pvshadows.shading import strength_uniform
+    >>> strength_uniform(2)
+    'pvsStrength2'
+    """
+    return f"pvsStrength{vtk_index}"
+
+
 def _probe_output(colour: str) -> str:
     return f"if ({PROBE_UNIFORM} >= 0) {{ fragOutput0 = {colour}; }}\n  {_PROBE_ANCHOR}"
 
@@ -115,22 +143,23 @@ def _light_hooks(light: LightShading, pbr: bool) -> list[tuple[str, str]]:
     compute = (
         f"float pvsVisibility{i} = {visibility};\n"
         f"  if ({PROBE_UNIFORM} == {i}) {{ pvsProbe = pvsVisibility{i}; }}\n"
+        f"  float pvsKept{i} = 1.0 - {strength_uniform(i)} * (1.0 - pvsVisibility{i});\n"
     )
     if pbr:
         return [
             (
                 f"radiance = lightColor{i};",
-                f"{compute}  radiance = lightColor{i} * pvsVisibility{i};",
+                f"{compute}  radiance = lightColor{i} * pvsKept{i};",
             )
         ]
     return [
         (
             f"diffuse += (df * lightColor{i});",
-            f"{compute}  diffuse += (df * pvsVisibility{i} * lightColor{i});",
+            f"{compute}  diffuse += (df * pvsKept{i} * lightColor{i});",
         ),
         (
             f"specular += (sf * lightColor{i});",
-            f"specular += (sf * pvsVisibility{i} * lightColor{i});",
+            f"specular += (sf * pvsKept{i} * lightColor{i});",
         ),
     ]
 

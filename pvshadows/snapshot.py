@@ -15,8 +15,8 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.scene import ActorTriangles, actor_matrix, read_triangles, vtk_id, world_bounds
 from pvshadows.transforms import translation
 

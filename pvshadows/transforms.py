@@ -8,7 +8,8 @@ the size of the scene, not of its distance from the origin.
 from __future__ import annotations
 
 import numpy as np
-import vtk
+
+from pvshadows import _vtk as vtk
 
 #: Forward and up axes of the six cube faces in GL order (+X, -X, +Y, -Y, +Z, -Z),
 #: chosen so that a face rendered with :func:`cube_face_rotation` lands where a

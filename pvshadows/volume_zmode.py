@@ -30,7 +30,8 @@ from itertools import combinations
 
 import numpy as np
 import pyvista as pv
-import vtk
+
+from pvshadows import _vtk as vtk
 
 #: The values ``zmode`` takes.
 ZMODES = ("auto", "zpass", "zfail")

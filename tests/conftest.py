@@ -32,3 +32,17 @@ def draw(plotter):
     """Render a fresh frame and return it (``screenshot`` alone renders only the first time)."""
     plotter.render()
     return plotter.screenshot(return_img=True)
+
+
+def spot_box_scene(**plotter_options):
+    """A 400x300 plotter lit only by a spot light above a box on a white ground.
+
+    Returns the plotter and the light; names the actors ``"ground"`` and ``"box"``.
+    """
+    pl = pv.Plotter(off_screen=True, lighting="none", window_size=(400, 300), **plotter_options)
+    pl.add_mesh(pv.Plane(i_size=8, j_size=8), color="white", name="ground")
+    pl.add_mesh(pv.Cube(center=(0, 0, 1), x_length=1.5, y_length=1.5, z_length=1.5), name="box")
+    spot = pv.Light(position=(0.5, 0.3, 5), focal_point=(0, 0, 0), positional=True, cone_angle=60)
+    pl.add_light(spot)
+    pl.camera_position = [(7, -7, 7), (0, 0, 0.5), (0, 0, 1)]
+    return pl, spot

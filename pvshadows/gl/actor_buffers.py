@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-import vtk
-
+from pvshadows import _vtk as vtk
 from pvshadows.gl.buffers import TriangleBuffers
 from pvshadows.scene import vtk_id
 from pvshadows.snapshot import ActorState

@@ -30,7 +30,7 @@ import sys
 from collections.abc import Callable
 from types import ModuleType
 
-import vtk
+from pvshadows import _vtk as vtk
 
 #: PyOpenGL platform for each VTK render window class.
 PLATFORM_OF_WINDOW = {

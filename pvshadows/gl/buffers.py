@@ -9,8 +9,8 @@ from __future__ import annotations
 import ctypes
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 
 

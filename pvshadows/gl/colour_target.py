@@ -7,8 +7,7 @@ drawn with the camera's projection, at the size of the renderer's viewport.
 
 from __future__ import annotations
 
-import vtk
-
+from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.framebuffer import finish_binding
 from pvshadows.gl.mask_target import MaskTexture

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from types import ModuleType
 
-import vtk
+from pvshadows import _vtk as vtk
 
 
 def finish_binding(

@@ -16,8 +16,8 @@ receivers like any texture of its own.
 from __future__ import annotations
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.framebuffer import finish_binding
 

@@ -13,7 +13,7 @@ from functools import cache
 from importlib import resources
 from pathlib import Path
 
-import vtk
+from pvshadows import _vtk as vtk
 
 
 class ShaderCompileError(RuntimeError):

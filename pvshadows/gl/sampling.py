@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.textures import DepthTexture
 

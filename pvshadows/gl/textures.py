@@ -10,8 +10,8 @@ parameters like any texture of its own.
 from __future__ import annotations
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.framebuffer import finish_binding
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.buffers import TriangleBuffers
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthCube

@@ -5,8 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-import vtk
-
+from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 
 

@@ -3,10 +3,12 @@
 Per light, in a framebuffer of pvshadows' own the size of the viewport
 (:class:`pvshadows.gl.colour_target.ColourTarget`): the mask is cleared to 1
 (lit), then every caster is drawn with the camera's projection times the
-flattening matrix (:func:`pvshadows.planes.flattening`), writing 0. The mask
-is binary, so a pixel covered by several flattened triangles is exactly as
-dark as one covered once, which is what a stencil test ("draw where not yet
-drawn") would give. No depth test runs at all: only the plane reads the mask,
+flattening matrix (:func:`pvshadows.planes.flattening`), multiplying the mask
+by its transmittance (``1 - opacity``, 0 for an opaque caster). Where opaque
+casters cover a pixel it is 0 however many flattened triangles cover it,
+which is what a stencil test ("draw where not yet drawn") would give; a
+translucent caster's two surfaces each let ``1 - opacity`` through, as the
+reference's shadow rays do. No depth test runs at all: only the plane reads the mask,
 at its own pixels, so the shadow ends where the plane ends and cannot fight
 with it in depth at any scale.
 
@@ -27,8 +29,8 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.buffers import TriangleBuffers
 from pvshadows.gl.colour_target import ColourTarget
@@ -52,12 +54,15 @@ class FlatDraw:
         the light's side.
     flat_w : numpy.ndarray
         ``(4,)`` the flattened point's ``w`` as a function of the model point.
+    transmittance : float, default: 0.0
+        Share of light each of its surfaces lets through (``1 - opacity``).
     """
 
     buffers: TriangleBuffers
     model_to_clip: np.ndarray
     plane_model: np.ndarray
     flat_w: np.ndarray
+    transmittance: float = 0.0
 
 
 class PlanarMaskPass:
@@ -119,7 +124,7 @@ class PlanarMaskPass:
             pass
 
     def draw(self, mask: MaskTexture, draws: list[FlatDraw]) -> None:
-        """Clear a light's mask to lit and draw its flattened casters into it as shadow.
+        """Clear a light's mask to lit and multiply in each flattened caster's transmittance.
 
         Parameters
         ----------
@@ -132,6 +137,9 @@ class PlanarMaskPass:
             gl.glEnable(gl.GL_CLIP_DISTANCE0)
             gl.glEnable(gl.GL_CLIP_DISTANCE1)
             gl.glEnable(gl.GL_DEPTH_CLAMP)
+            state = self._window.GetState()
+            state.vtkglEnable(gl.GL_BLEND)
+            state.vtkglBlendFunc(gl.GL_ZERO, gl.GL_SRC_COLOR)
             program = self._bind()
             for draw in draws:
                 program.SetUniformMatrix4x4v("modelToClip", 1, column_major(draw.model_to_clip))
@@ -139,6 +147,7 @@ class PlanarMaskPass:
                     "planeModel", np.asarray(draw.plane_model, np.float32).tolist()
                 )
                 program.SetUniform4f("flatW", np.asarray(draw.flat_w, np.float32).tolist())
+                program.SetUniformf("transmittance", float(draw.transmittance))
                 draw.buffers.draw_triangles(program)
 
     def release(self) -> None:

@@ -22,8 +22,8 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.buffers import EmptyArray, IndexedBuffers, TriangleBuffers
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget

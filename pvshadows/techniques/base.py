@@ -5,8 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar, Protocol
 
-import vtk
-
+from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan

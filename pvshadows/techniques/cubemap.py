@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.textures import DepthCube
 from pvshadows.lights import LightKind
 from pvshadows.passes.cube_depth import CubeCaster, CubeDepthPass, caster_face_mask

@@ -8,8 +8,7 @@ it for PCSS's blocker search, and the jittered disk offsets.
 
 from __future__ import annotations
 
-import vtk
-
+from pvshadows import _vtk as vtk
 from pvshadows.gl.sampling import DiskOffsets, RawDepthView
 from pvshadows.gl.textures import DepthTexture
 from pvshadows.glsl_library import KINDS, filter_function

@@ -12,8 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.fitting import SunFit, spot_fit, sun_fit, sun_rotation
 from pvshadows.gl.textures import DepthMap
 from pvshadows.lights import LightKind

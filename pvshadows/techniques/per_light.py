@@ -5,8 +5,8 @@ from __future__ import annotations
 from typing import ClassVar, Protocol
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.planner import LightPlan
 from pvshadows.scene import vtk_id
 from pvshadows.settings import ShadowSettings

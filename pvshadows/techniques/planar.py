@@ -31,8 +31,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.gl.mask_target import MaskTexture
 from pvshadows.lights import LightKind
 from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
@@ -44,6 +44,7 @@ from pvshadows.shading import LightShading
 from pvshadows.snapshot import ActorState
 from pvshadows.techniques.base import FrameContext
 from pvshadows.transforms import translation
+from pvshadows.translucency import transmittance
 
 _PASS = "planar mask"
 
@@ -207,6 +208,7 @@ def flat_draws(
                 projection,
                 view,
             ),
+            transmittance(caster.actor),
         )
         for caster in casters
     ]
@@ -313,7 +315,7 @@ class PlanarTechnique:
                 camera.GetProjectionTransformMatrix(context.renderer.GetTiledAspectRatio(), -1, 1)
             ).tobytes(),
             state.mask.size,
-            tuple(c.key() for c in casters),
+            tuple((*c.key(), transmittance(c.actor)) for c in casters),
         )
         if key == state.key:
             return [

@@ -41,8 +41,8 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 import pyvista as pv
-import vtk
 
+from pvshadows import _vtk as vtk
 from pvshadows.closed import OpenMeshError
 from pvshadows.gl.buffers import IndexedBuffers
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
