@@ -345,35 +345,63 @@ class ShadowsComponent:
                 )
         return report
 
-    def visibility(self, light: vtk.vtkLight | None = None) -> np.ndarray:
+    def visibility(self, light: vtk.vtkLight | None = None, *, scale: int = 1) -> np.ndarray:
         """Return how much of a light reaches the surface seen in each pixel.
 
         The frame is drawn once more with the receivers showing that light's
         visibility instead of their colour (the same maps, camera and
-        window), then drawn normally again.
+        window; SSAA included, image passes that only recolour the frame,
+        such as eye-dome lighting or SSAO, left out), then drawn normally
+        again.
 
         Parameters
         ----------
         light : pyvista.Light, optional
             A shadowed light; by default the first one of the frame.
+        scale : int, default: 1
+            Read the image ``pl.screenshot(scale=scale)`` produces: the
+            frame drawn ``scale`` times larger each way, in tiles.
 
         Returns
         -------
         numpy.ndarray
-            float32 ``(H, W)`` in [0, 1], row 0 at the top, NaN where the
-            pixel shows no receiving surface. 0 where the visible side faces
-            away from the light.
+            float32 ``(H, W)`` in [0, 1] (``H`` and ``W`` times ``scale``),
+            row 0 at the top, NaN where the pixel shows no receiving
+            surface. 0 where the visible side faces away from the light.
 
         Raises
         ------
         ValueError
-            If the light cast no shadow in the last frame.
+            If the light cast no shadow in the last frame, or ``scale`` is
+            below 1.
+        TypeError
+            If ``scale`` is not an int.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> import pvshadows
+        >>> pl = pv.Plotter(off_screen=True, lighting="none", window_size=(200, 150))
+        >>> _ = pl.add_mesh(pv.Plane(i_size=10, j_size=10))
+        >>> _ = pl.add_mesh(pv.Sphere(center=(0, 0, 1)))
+        >>> pl.add_light(pv.Light(position=(0, 0, 3), positional=True, cone_angle=180))
+        >>> pl.shadows.enable()
+        >>> pl.shadows.visibility(scale=2).shape
+        (300, 400)
         """
+        scale = _check_scale(scale)
         renderer, plan = self._plan_of(light)
-        return read_visibility(self._plotter, renderer.renderer, plan.vtk_index, renderer)
+        return read_visibility(
+            self._plotter, renderer.renderer, plan.vtk_index, renderer, scale=scale
+        )
 
     def reference(
-        self, light: vtk.vtkLight | None = None, *, light_size: float = 0.0, samples: int = 1
+        self,
+        light: vtk.vtkLight | None = None,
+        *,
+        light_size: float = 0.0,
+        samples: int = 1,
+        scale: int = 1,
     ) -> np.ndarray:
         """Return the exact visibility of a light per pixel, by ray casting.
 
@@ -387,21 +415,27 @@ class ShadowsComponent:
             hard shadows.
         samples : int, default: 1
             Shadow rays per pixel (more than one needs ``light_size > 0``).
+        scale : int, default: 1
+            Trace the image ``pl.screenshot(scale=scale)`` produces.
 
         Returns
         -------
         numpy.ndarray
             float32 ``(H, W)`` like :meth:`visibility`.
         """
-        return self._trace(light, light_size=light_size, samples=samples).visibility
+        return self._trace(light, light_size=light_size, samples=samples, scale=scale).visibility
 
-    def measure(self, light: vtk.vtkLight | None = None, **reference: object) -> Measurement:
+    def measure(
+        self, light: vtk.vtkLight | None = None, *, scale: int = 1, **reference: object
+    ) -> Measurement:
         """Compare :meth:`visibility` with :meth:`reference` on the current frame.
 
         Parameters
         ----------
         light : pyvista.Light, optional
             A shadowed light; by default the first one.
+        scale : int, default: 1
+            Compare the image ``pl.screenshot(scale=scale)`` produces.
         **reference
             ``light_size`` and ``samples`` for a soft-shadow reference.
 
@@ -411,8 +445,8 @@ class ShadowsComponent:
             Share of lit-side pixels whose shadow class disagrees, false and
             missed shadow shares, and the RMSE of visibility.
         """
-        shown = self.visibility(light)
-        traced = self._trace(light, **reference)
+        shown = self.visibility(light, scale=scale)
+        traced = self._trace(light, scale=scale, **reference)
         return compare(shown, traced)
 
     def __plotter_close__(self) -> None:
@@ -532,16 +566,24 @@ class ShadowsComponent:
                 return candidate, renderer
         raise AssertionError  # _check_light guarantees the light is in the plotter
 
-    def _trace(self, light: vtk.vtkLight | None, *, light_size: object = 0.0, samples: object = 1):
+    def _trace(
+        self,
+        light: vtk.vtkLight | None,
+        *,
+        light_size: object = 0.0,
+        samples: object = 1,
+        scale: object = 1,
+    ):
         if isinstance(light_size, bool) or not isinstance(light_size, Real):
             msg = f"light_size must be a number, got {light_size!r}"
             raise TypeError(msg)
         if isinstance(samples, bool) or not isinstance(samples, Integral):
             msg = f"samples must be an int, got {samples!r}"
             raise TypeError(msg)
+        scale = _check_scale(scale)
         light, ren = self._light_and_renderer(light)
         snapshot = self._reader.read(ren)
-        width, height = ren.GetSize()
+        width, height = (scale * size for size in ren.GetSize())
         camera = ren.GetActiveCamera()
         matrix = camera.GetCompositeProjectionTransformMatrix(ren.GetTiledAspectRatio(), -1, 1)
         view = ViewSpec(pv.array_from_vtkmatrix(matrix), int(width), int(height))
@@ -568,3 +610,13 @@ class ShadowsComponent:
             )
             self._traced = (key, result)
         return self._traced[1]
+
+
+def _check_scale(scale: object) -> int:
+    if isinstance(scale, bool) or not isinstance(scale, Integral):
+        msg = f"scale must be an int (the screenshot's scale), got {scale!r}"
+        raise TypeError(msg)
+    if scale < 1:
+        msg = f"scale must be 1 or more, got {scale!r}"
+        raise ValueError(msg)
+    return int(scale)

@@ -15,6 +15,7 @@ from collections.abc import Callable
 import vtk
 
 from pvshadows.gl.actor_buffers import ActorBuffers
+from pvshadows.gl.texture_units import park_active_unit
 from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan, plan_frame
 from pvshadows.report import FrameReport, LightReport
@@ -142,6 +143,7 @@ class RendererShadows:
             uniforms.update(technique.activate(plan, context))
             if technique not in self._active:
                 self._active.append(technique)
+        park_active_unit(self._window)
         for technique in self._techniques.values():
             technique.keep_only(plans)
         self._buffers.keep_only(snapshot.actors)
