@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import replace
+from functools import partial
 from numbers import Integral, Real
 
 import numpy as np
@@ -12,6 +13,7 @@ import vtk
 
 from pvshadows.frame import RendererShadows
 from pvshadows.gl.binding import check_window
+from pvshadows.light_kit import casts_by_default
 from pvshadows.lights import light_kind, light_pose
 from pvshadows.measure import Measurement, compare
 from pvshadows.planes import require_plane
@@ -95,7 +97,11 @@ class ShadowsComponent:
             shadow volumes; shadow maps of 2048 texels for open casters).
             Settings given explicitly win over the preset's.
         lights : iterable of pyvista.Light, optional
-            Only these lights cast shadows. By default every light does.
+            Only these lights cast shadows. By default every scene light
+            does and, of the lights that follow the camera (PyVista's light
+            kit), only the brightest one, the key light: the fill and back
+            lights stay unshadowed. A headlight never casts (its shadows
+            hide behind the objects that cast them).
         **settings
             Defaults for every light: ``resolution``, ``filter``,
             ``pcf_taps``, ``samples``, ``filter_radius``, ``light_size``,
@@ -132,7 +138,9 @@ class ShadowsComponent:
         self._defaults, self._lights = defaults, chosen
         if not self._renderers:
             self._renderers = [
-                RendererShadows(renderer, self._settings_for, self._reader)
+                RendererShadows(
+                    renderer, partial(self._settings_for, renderer=renderer), self._reader
+                )
                 for renderer in self._plotter.renderers
             ]
             for renderer in self._renderers:
@@ -457,9 +465,13 @@ class ShadowsComponent:
 
     # -- helpers ---------------------------------------------------------------------------
 
-    def _settings_for(self, light: vtk.vtkLight) -> ShadowSettings | None:
+    def _settings_for(
+        self, light: vtk.vtkLight, renderer: vtk.vtkRenderer
+    ) -> ShadowSettings | None:
         key = vtk_id(light)
         if self._lights is not None and key not in self._lights:
+            return None
+        if self._lights is None and not casts_by_default(light, renderer):
             return None
         return self._per_light.get(key, self._defaults)
 

@@ -21,6 +21,7 @@ import numpy as np
 import vtk
 
 from pvshadows.culling import box_in_frustum, box_in_spot, frustum_planes
+from pvshadows.light_kit import unshadowed_reason
 from pvshadows.lights import LightKind, LightPose, casts_light, light_kind, light_pose
 from pvshadows.planes import sole_plane
 from pvshadows.settings import ShadowSettings
@@ -134,7 +135,7 @@ def plan_frame(
             vtk_index += 1
         plans.append(plan)
         if plan.settings is None:
-            plan.notes.append("shadows are not enabled for this light")
+            plan.notes.append(unshadowed_reason(light, renderer))
             continue
         if not casts_light(light):
             plan.notes.append(
