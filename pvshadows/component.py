@@ -5,6 +5,7 @@ from __future__ import annotations
 import warnings
 from collections.abc import Iterable
 from dataclasses import replace
+from functools import partial
 from numbers import Integral, Real
 
 import numpy as np
@@ -13,6 +14,7 @@ import pyvista as pv
 from pvshadows import _vtk as vtk
 from pvshadows.frame import RendererShadows
 from pvshadows.gl.binding import check_window
+from pvshadows.light_kit import casts_by_default
 from pvshadows.lights import light_kind, light_pose
 from pvshadows.measure import Measurement, compare
 from pvshadows.naming import ActorNames
@@ -109,7 +111,11 @@ class ShadowsComponent:
             shadow volumes; shadow maps of 2048 texels for open casters).
             Settings given explicitly win over the preset's.
         lights : iterable of pyvista.Light, optional
-            Only these lights cast shadows. By default every light does.
+            Only these lights cast shadows. By default every scene light
+            does and, of the lights that follow the camera (PyVista's light
+            kit), only the brightest one, the key light: the fill and back
+            lights stay unshadowed. A headlight never casts (its shadows
+            hide behind the objects that cast them).
         **settings
             Defaults for every light: ``resolution``, ``filter``,
             ``pcf_taps``, ``samples``, ``filter_radius``, ``light_size``,
@@ -154,7 +160,9 @@ class ShadowsComponent:
         self._defaults, self._lights = defaults, chosen
         if not self._renderers:
             self._renderers = [
-                RendererShadows(renderer, self._settings_for, self._reader)
+                RendererShadows(
+                    renderer, partial(self._settings_for, renderer=renderer), self._reader
+                )
                 for renderer in self._plotter.renderers
             ]
             for renderer in self._renderers:
@@ -383,24 +391,29 @@ class ShadowsComponent:
                 )
         return report
 
-    def visibility(self, light: vtk.vtkLight | None = None) -> np.ndarray:
+    def visibility(self, light: vtk.vtkLight | None = None, *, scale: int = 1) -> np.ndarray:
         """Return how much of a light reaches the surface seen in each pixel.
 
         The frame is drawn once more with the receivers showing that light's
         visibility instead of their colour (the same maps, camera and
-        window), then drawn normally again.
+        window; SSAA included, image passes that only recolour the frame,
+        such as eye-dome lighting or SSAO, left out), then drawn normally
+        again.
 
         Parameters
         ----------
         light : pyvista.Light, optional
             A shadowed light; by default the first one of the frame.
+        scale : int, default: 1
+            Read the image ``pl.screenshot(scale=scale)`` produces: the
+            frame drawn ``scale`` times larger each way, in tiles.
 
         Returns
         -------
         numpy.ndarray
-            float32 ``(H, W)`` in [0, 1], row 0 at the top, NaN where the
-            pixel shows no receiving surface. 0 where the visible side faces
-            away from the light.
+            float32 ``(H, W)`` in [0, 1] (``H`` and ``W`` times ``scale``),
+            row 0 at the top, NaN where the pixel shows no receiving
+            surface. 0 where the visible side faces away from the light.
 
         Notes
         -----
@@ -415,17 +428,39 @@ class ShadowsComponent:
             If ``light`` is not a ``pyvista.Light``.
         ValueError
             If the light is not in this plotter or cast no shadow in the
-            last frame.
+            last frame, or ``scale`` is below 1.
+        TypeError
+            If ``scale`` is not an int.
         pvshadows.probe.FrameFailedError
             If pvshadows failed in the frame, so it was drawn without
             shadows (:attr:`last_frame` says which light, which pass and
             the error).
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> import pvshadows
+        >>> pl = pv.Plotter(off_screen=True, lighting="none", window_size=(200, 150))
+        >>> _ = pl.add_mesh(pv.Plane(i_size=10, j_size=10))
+        >>> _ = pl.add_mesh(pv.Sphere(center=(0, 0, 1)))
+        >>> pl.add_light(pv.Light(position=(0, 0, 3), positional=True, cone_angle=180))
+        >>> pl.shadows.enable()
+        >>> pl.shadows.visibility(scale=2).shape
+        (300, 400)
         """
+        scale = _check_scale(scale)
         renderer, plan = self._plan_of(light)
-        return read_visibility(self._plotter, renderer.renderer, plan.vtk_index, renderer)
+        return read_visibility(
+            self._plotter, renderer.renderer, plan.vtk_index, renderer, scale=scale
+        )
 
     def reference(
-        self, light: vtk.vtkLight | None = None, *, light_size: float = 0.0, samples: int = 1
+        self,
+        light: vtk.vtkLight | None = None,
+        *,
+        light_size: float = 0.0,
+        samples: int = 1,
+        scale: int = 1,
     ) -> np.ndarray:
         """Return the exact visibility of a light per pixel, by ray casting.
 
@@ -439,21 +474,27 @@ class ShadowsComponent:
             hard shadows.
         samples : int, default: 1
             Shadow rays per pixel (more than one needs ``light_size > 0``).
+        scale : int, default: 1
+            Trace the image ``pl.screenshot(scale=scale)`` produces.
 
         Returns
         -------
         numpy.ndarray
             float32 ``(H, W)`` like :meth:`visibility`.
         """
-        return self._trace(light, light_size=light_size, samples=samples).visibility
+        return self._trace(light, light_size=light_size, samples=samples, scale=scale).visibility
 
-    def measure(self, light: vtk.vtkLight | None = None, **reference: object) -> Measurement:
+    def measure(
+        self, light: vtk.vtkLight | None = None, *, scale: int = 1, **reference: object
+    ) -> Measurement:
         """Compare :meth:`visibility` with :meth:`reference` on the current frame.
 
         Parameters
         ----------
         light : pyvista.Light, optional
             A shadowed light; by default the first one.
+        scale : int, default: 1
+            Compare the image ``pl.screenshot(scale=scale)`` produces.
         **reference
             ``light_size`` and ``samples`` for a soft-shadow reference.
 
@@ -473,8 +514,8 @@ class ShadowsComponent:
             msg = f"unknown reference option(s) {', '.join(unknown)}; they are light_size, samples"
             raise TypeError(msg)
         _check_reference_options(**reference)
-        shown = self.visibility(light)
-        traced = self._trace(light, **reference)
+        shown = self.visibility(light, scale=scale)
+        traced = self._trace(light, scale=scale, **reference)
         return compare(shown, traced)
 
     def __plotter_close__(self) -> None:
@@ -485,9 +526,13 @@ class ShadowsComponent:
 
     # -- helpers ---------------------------------------------------------------------------
 
-    def _settings_for(self, light: vtk.vtkLight) -> ShadowSettings | None:
+    def _settings_for(
+        self, light: vtk.vtkLight, renderer: vtk.vtkRenderer
+    ) -> ShadowSettings | None:
         key = vtk_id(light)
         if self._lights is not None and key not in self._lights:
+            return None
+        if self._lights is None and not casts_by_default(light, renderer):
             return None
         return self._per_light.get(key, self._defaults)
 
@@ -642,11 +687,19 @@ class ShadowsComponent:
                 return candidate, renderer
         raise AssertionError  # _check_light guarantees the light is in the plotter
 
-    def _trace(self, light: vtk.vtkLight | None, *, light_size: object = 0.0, samples: object = 1):
+    def _trace(
+        self,
+        light: vtk.vtkLight | None,
+        *,
+        light_size: object = 0.0,
+        samples: object = 1,
+        scale: object = 1,
+    ):
         _check_reference_options(light_size, samples)
+        scale = _check_scale(scale)
         light, ren = self._light_and_renderer(light)
         snapshot = self._reader.read(ren)
-        width, height = ren.GetSize()
+        width, height = (scale * size for size in ren.GetSize())
         camera = ren.GetActiveCamera()
         matrix = camera.GetCompositeProjectionTransformMatrix(ren.GetTiledAspectRatio(), -1, 1)
         view = ViewSpec(pv.array_from_vtkmatrix(matrix), int(width), int(height))
@@ -718,3 +771,13 @@ def _check_reference_options(light_size: object = 0.0, samples: object = 1) -> N
             "samples > 1 and light_size > 0, hard shadows samples=1 and light_size=0"
         )
         raise ValueError(msg)
+
+
+def _check_scale(scale: object) -> int:
+    if isinstance(scale, bool) or not isinstance(scale, Integral):
+        msg = f"scale must be an int (the screenshot's scale), got {scale!r}"
+        raise TypeError(msg)
+    if scale < 1:
+        msg = f"scale must be 1 or more, got {scale!r}"
+        raise ValueError(msg)
+    return int(scale)

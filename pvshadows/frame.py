@@ -16,6 +16,7 @@ from pathlib import Path
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
+from pvshadows.gl.texture_units import park_active_unit
 from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan, plan_frame
 from pvshadows.reach import ReachCache
@@ -151,6 +152,7 @@ class RendererShadows:
                 self._active.append(technique)
             uniforms.update(technique.activate(plan, context))
         self._where = "keeping only this frame's maps"
+        park_active_unit(self._window)
         for technique in self._techniques.values():
             technique.keep_only(plans)
         self._buffers.keep_only(snapshot.actors)

@@ -21,6 +21,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.culling import boxes_in_frustum
+from pvshadows.light_kit import unshadowed_reason
 from pvshadows.lights import LightKind, LightPose, casts_light, light_kind, light_pose
 from pvshadows.planes import sole_plane
 from pvshadows.reach import ReachCache
@@ -154,7 +155,7 @@ def plan_frame(
             vtk_index += 1
         plans.append(plan)
         if plan.settings is None:
-            plan.notes.append("shadows are not enabled for this light")
+            plan.notes.append(unshadowed_reason(light, renderer))
             continue
         if not casts_light(light):
             plan.notes.append(
@@ -231,4 +232,3 @@ def _fit_far_point(
         "aimed at them instead of a cube"
     )
     return "map", LightPose(LightKind.SPOT, pose.position, direction, half)
-

@@ -2,8 +2,15 @@
 
 The frame is drawn again with every receiver writing ``(visibility, 1, 0)``
 and every other actor ``(0, 0, 0)`` over a black background, so the green
-channel is the share of the pixel covered by a receiver (multisampling
-averages it like the red one) and red over green is the visibility.
+channel is the share of the pixel covered by a receiver (multisampling and
+SSAA average it like the red one) and red over green is the visibility.
+
+Image passes that recolour the finished frame (eye-dome lighting, SSAO,
+blur, depth of field: ``vtkImageProcessingPass``) are left out of that
+frame: they change colours, not where shadows fall, and would turn the
+visibility they are given into something else. SSAA stays, since it changes
+which surface each pixel shows. A scaled read (``scale=N``) draws the frame
+in tiles exactly as ``pl.screenshot(scale=N)`` does.
 """
 
 from __future__ import annotations
@@ -14,9 +21,11 @@ import pyvista as pv
 from pvshadows import _vtk as vtk
 
 
-def _window_pixels(window: vtk.vtkRenderWindow) -> np.ndarray:
+def _window_pixels(window: vtk.vtkRenderWindow, scale: int) -> np.ndarray:
     grab = vtk.vtkWindowToImageFilter()
     grab.SetInput(window)
+    grab.SetScale(scale)
+    grab.FixBoundaryOn()
     grab.ShouldRerenderOff()
     grab.ReadFrontBufferOn()
     grab.SetInputBufferTypeToRGB()
@@ -61,8 +70,38 @@ def require_drawn(renderers: list) -> None:
             raise FrameFailedError(msg) from renderer.error
 
 
+class _WithoutImagePasses:
+    """Take the renderer's image passes out of its pass chain, and put them back."""
+
+    def __init__(self, renderer: vtk.vtkRenderer) -> None:
+        self._renderer = renderer
+        self._top = renderer.GetPass()
+        chain, current = [], self._top
+        while current is not None and len(chain) < 64:
+            chain.append(current)
+            delegate = getattr(current, "GetDelegatePass", None)
+            current = delegate() if delegate is not None else None
+        self._kept = [p for p in chain if not isinstance(p, vtk.vtkImageProcessingPass)]
+        self._changed = len(self._kept) != len(chain)
+        self._delegates = [p.GetDelegatePass() for p in self._kept[:-1]]
+
+    def __enter__(self) -> None:
+        if not self._changed:
+            return
+        self._renderer.SetPass(self._kept[0] if self._kept else None)
+        for outer, inner in zip(self._kept, self._kept[1:], strict=False):
+            outer.SetDelegatePass(inner)
+
+    def __exit__(self, *exc: object) -> None:
+        if not self._changed:
+            return
+        for outer, inner in zip(self._kept, self._delegates, strict=False):
+            outer.SetDelegatePass(inner)
+        self._renderer.SetPass(self._top)
+
+
 def read_visibility(
-    plotter: pv.Plotter, renderer: vtk.vtkRenderer, vtk_index: int, shadows
+    plotter: pv.Plotter, renderer: vtk.vtkRenderer, vtk_index: int, shadows, scale: int = 1
 ) -> np.ndarray:
     """Draw the frame showing one light's visibility and read it back.
 
@@ -76,11 +115,15 @@ def read_visibility(
         The light's index among switched-on lights.
     shadows : pvshadows.frame.RendererShadows
         The renderer's shadows, whose probe is switched for one frame.
+    scale : int, default: 1
+        Draw the frame ``scale`` times larger each way, in tiles, as
+        ``pl.screenshot(scale=scale)`` does.
 
     Returns
     -------
     numpy.ndarray
-        float32 ``(H, W)``, row 0 at the top, NaN where no receiver is seen.
+        float32 ``(H, W)`` (times ``scale``), row 0 at the top, NaN where no
+        receiver is seen.
     """
     window = plotter.ren_win
     saved = (
@@ -95,9 +138,10 @@ def read_visibility(
     renderer.UseFXAAOff()
     shadows.probe_index = vtk_index
     try:
-        window.Render()
-        require_drawn([shadows])
-        pixels = _window_pixels(window).astype(np.float32) / 255.0
+        with _WithoutImagePasses(renderer):
+            window.Render()
+            require_drawn([shadows])
+            pixels = _window_pixels(window, scale).astype(np.float32) / 255.0
     finally:
         shadows.probe_index = -1
         renderer.SetBackground(*saved[0])

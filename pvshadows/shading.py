@@ -135,11 +135,27 @@ def _uses_pbr(actor: vtk.vtkActor) -> bool:
     return actor.GetProperty().GetInterpolation() == vtk.VTK_PBR
 
 
-def _light_hooks(light: LightShading, pbr: bool) -> list[tuple[str, str]]:
+def _draws_lines_or_points(actor: vtk.vtkActor) -> bool:
+    """Return whether the actor's surface is drawn as lines or points (no facet for a normal)."""
+    return actor.GetProperty().GetRepresentation() != vtk.VTK_SURFACE
+
+
+def _normal_expression(actor: vtk.vtkActor) -> str:
+    """Return the GLSL normal that a receiver's lookups offset along and test facing with.
+
+    A triangle's own facet normal (screen-space derivatives); for lines and
+    points, whose derivatives run along the line or vanish, the normal VTK
+    lights them with (the mesh's normals, or VTK's line normal facing the
+    camera), so a line is shadowed exactly where VTK lights it.
+    """
+    if _draws_lines_or_points(actor):
+        return "normalize(normalVCVSOutput)"
+    return "pvsGeometricNormal(pvsFacetVC, normalVCVSOutput)"
+
+
+def _light_hooks(light: LightShading, pbr: bool, normal: str) -> list[tuple[str, str]]:
     i = light.vtk_index
-    visibility = light.visibility.replace(
-        "pvsNormalVC", "pvsGeometricNormal(pvsFacetVC, normalVCVSOutput)"
-    )
+    visibility = light.visibility.replace("pvsNormalVC", normal)
     compute = (
         f"float pvsVisibility{i} = {visibility};\n"
         f"  if ({PROBE_UNIFORM} == {i}) {{ pvsProbe = pvsVisibility{i}; }}\n"
@@ -206,8 +222,9 @@ def receiver_replacements(
             _probe_output("vec4(pvsProbe, 1.0, 0.0, 1.0)"),
         ),
     ]
+    normal = _normal_expression(actor)
     for light in lights:
-        edits.extend(_light_hooks(light, pbr))
+        edits.extend(_light_hooks(light, pbr, normal))
         edits.extend(
             (f"uniform int {name};", f"uniform {kind} {name};")
             for name, kind in light.samplers.items()

@@ -177,16 +177,21 @@ def test_nothing_outside_a_map_is_shadowed():
         assert error.misclassified <= 0.01
 
 
-def test_light_kit_lights_all_cast():
+def test_light_kit_key_light_casts_and_the_others_opt_in():
     pl = pv.Plotter(off_screen=True, window_size=[300, 200])
     pl.add_mesh(pv.Plane(i_size=6, j_size=6))
     pl.add_mesh(pv.Sphere(center=(0, 0, 1)))
     pl.shadows.enable(**HARD)
     draw(pl)
     techniques = [r.technique for r in pl.shadows.last_frame.lights]
-    assert techniques[0] is None  # the headlight: its shadows hide behind their casters
-    assert techniques[1:] == ["map"] * 4
-    for light in list(pl.renderer.lights)[1:]:
+    # The headlight's shadows hide behind their casters; fill and back lights stay unshadowed.
+    assert techniques == [None, "map", None, None, None]
+    assert "fill and back lights stay unshadowed" in pl.shadows.last_frame.lights[2].notes[0]
+    kit = list(pl.renderer.lights)
+    pl.shadows.enable(lights=kit[1:], **HARD)
+    draw(pl)
+    assert [r.technique for r in pl.shadows.last_frame.lights][1:] == ["map"] * 4
+    for light in kit[1:]:
         assert pl.shadows.measure(light).misclassified <= 0.02
 
 

@@ -9,6 +9,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan
+from pvshadows.render_target import RenderTarget, render_target
 from pvshadows.report import PassReport
 from pvshadows.shading import LightShading
 from pvshadows.snapshot import Snapshot
@@ -50,9 +51,16 @@ class FrameContext:
     view: FrameView
 
     def viewport_size(self) -> tuple[int, int]:
-        """Return the renderer's size in pixels."""
-        width, height = self.renderer.GetSize()
-        return int(width), int(height)
+        """Return the size in pixels of what the renderer is drawn into this frame.
+
+        The tile being drawn of a scaled screenshot, or the larger framebuffer
+        of an SSAA pass (:func:`pvshadows.render_target.render_target`).
+        """
+        return render_target(self.renderer).size
+
+    def target(self) -> RenderTarget:
+        """Return the rectangle the renderer's actors are drawn into this frame."""
+        return render_target(self.renderer)
 
 
 class Technique(Protocol):

@@ -391,8 +391,8 @@ class PlanarTechnique:
             return uniforms
         state.mask.texture.Activate()
         state.active = True
-        width, height = context.renderer.GetSize()
-        x0, y0 = context.renderer.GetOrigin()
+        target = context.target()
+        (x0, y0), (width, height) = target.origin, target.size
         uniforms[f"pvsPlanarMask{i}"] = state.mask.texture.GetTextureUnit()
         uniforms[f"pvsPlanarViewport{i}"] = (float(x0), float(y0), float(width), float(height))
         return uniforms

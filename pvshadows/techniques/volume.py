@@ -49,6 +49,7 @@ from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
 from pvshadows.lights import LightKind
 from pvshadows.passes.volume_stencil import DepthDraw, VolumeDraw, VolumePasses
 from pvshadows.planner import LightPlan
+from pvshadows.render_target import tiled_viewport
 from pvshadows.report import PassReport
 from pvshadows.scene import ActorTriangles, vtk_id
 from pvshadows.shading import LightShading
@@ -672,7 +673,8 @@ class VolumeTechnique:
             return {}
         state.mask.texture.Activate()
         i = plan.vtk_index
-        width, height, x0, y0 = _tiled_viewport(context.renderer)
+        target = context.target()
+        (x0, y0), (width, height) = target.origin, target.size
         light_vc = context.view.light_in_view(_homogeneous_light(plan))
         uniforms: dict[str, object] = {
             f"pvsMask{i}": state.mask.texture.GetTextureUnit(),
@@ -699,7 +701,8 @@ class VolumeTechnique:
         context : FrameContext
             The frame's context (its renderer's viewport).
         """
-        width, height, x0, y0 = _tiled_viewport(context.renderer)
+        target = tiled_viewport(context.renderer)
+        (x0, y0), (width, height) = target.origin, target.size
         for state in self._lights.values():
             if state.draws:
                 self._passes.overlay(state.draws, (x0, y0, width, height), OVERLAY_COLOUR)
@@ -774,12 +777,6 @@ def _projection(renderer: vtk.vtkRenderer) -> np.ndarray:
     camera = renderer.GetActiveCamera()
     matrix = camera.GetCompositeProjectionTransformMatrix(renderer.GetTiledAspectRatio(), -1, 1)
     return pv.array_from_vtkmatrix(matrix)
-
-
-def _tiled_viewport(renderer: vtk.vtkRenderer) -> tuple[int, int, int, int]:
-    width, height = renderer.GetSize()
-    x0, y0 = renderer.GetOrigin()
-    return int(width), int(height), int(x0), int(y0)
 
 
 def _holds_the_rest(
