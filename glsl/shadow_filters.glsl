@@ -11,6 +11,7 @@
 //   PVS_TEXEL_DEPTH   (raw, kind, receiver, frame, t, out receiverDepth) -> its stored depth
 //   PVS_SEARCH_RADIUS / PVS_PENUMBRA_RADIUS   in texels, for PCSS
 //   PVS_LIT, PVS_HARD, PVS_PCF, PVS_RANDOM, PVS_PCSS   names of the filter functions
+//   PVS_BOX                                            name of the box both hard and pcf use
 //   PVS_WITH_LIT, PVS_WITH_HARD, ...                   which to compile
 //
 // Every compare reads one texel at its centre against the receiver's own
@@ -27,38 +28,13 @@ float PVS_LIT(PVS_MAP kind, PvsReceiver r)
 }
 #endif
 
-#ifdef PVS_WITH_HARD
-// The four texels around the receiver, each compared at its centre and
-// interpolated bilinearly, then cut at one half: the edge runs between the
-// texel centres on either side of it, not along the texels' own outlines.
-float PVS_HARD(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r)
-{
-  if (r.lit == 0.0)
-  {
-    return 0.0;
-  }
-  PvsTexelFrame f = PVS_FRAME(depthMap, kind, r);
-  vec2 first = floor(f.at - 0.5);
-  vec2 w = f.at - 0.5 - first;
-  float low = mix(PVS_TEXEL(depthMap, kind, r, f, first + vec2(0.5, 0.5)),
-                  PVS_TEXEL(depthMap, kind, r, f, first + vec2(1.5, 0.5)), w.x);
-  float high = mix(PVS_TEXEL(depthMap, kind, r, f, first + vec2(0.5, 1.5)),
-                   PVS_TEXEL(depthMap, kind, r, f, first + vec2(1.5, 1.5)), w.x);
-  return step(0.5, mix(low, high, w.y));
-}
-#endif
-
-#ifdef PVS_WITH_PCF
+#if defined(PVS_WITH_HARD) || defined(PVS_WITH_PCF)
 // What side x side bilinear compares one texel apart would return, from the
 // (side + 1)^2 texels they touch, each compared at its own centre: a box of
 // side texels centred on the receiver, its first and last texels weighted by
 // how much of them it covers.
-float PVS_PCF(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r, int side)
+float PVS_BOX(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r, int side)
 {
-  if (r.lit == 0.0)
-  {
-    return 0.0;
-  }
   PvsTexelFrame f = PVS_FRAME(depthMap, kind, r);
   vec2 start = f.at - 0.5 * float(side);
   vec2 first = floor(start);
@@ -74,6 +50,25 @@ float PVS_PCF(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r, int side)
     }
   }
   return sum / float(side * side);
+}
+#endif
+
+#ifdef PVS_WITH_HARD
+// The 3 x 3 texels round the receiver, each compared at its centre, weighted
+// as two by two bilinear compares would weight them, and cut at one half: a
+// hard edge through the middle of the texels on either side of it, not along
+// the texels' own outlines (a staircase that, seen up close, is many pixels
+// wide), and still sharp.
+float PVS_HARD(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r)
+{
+  return r.lit == 0.0 ? 0.0 : step(0.5, PVS_BOX(depthMap, kind, r, 2));
+}
+#endif
+
+#ifdef PVS_WITH_PCF
+float PVS_PCF(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r, int side)
+{
+  return r.lit == 0.0 ? 0.0 : PVS_BOX(depthMap, kind, r, side);
 }
 #endif
 

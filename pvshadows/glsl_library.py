@@ -84,6 +84,7 @@ def _instance(kind: str, filters: set[str]) -> str:
     names = {k: v for k, v in KINDS[kind].items() if k != "file"}
     names.update({f"PVS_{f.upper()}": filter_function(kind, f) for f in FILTERS})
     names.update({f"PVS_WITH_{f.upper()}": "" for f in filters})
+    names["PVS_BOX"] = filter_function(kind, "box")
     defines = "".join(
         f"#define {name} {value}\n".replace(" \n", "\n") for name, value in names.items()
     )

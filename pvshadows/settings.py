@@ -58,7 +58,7 @@ class ShadowSettings:
     resolution : int
         Texels per side of each shadow-map face, 64 to 4096.
     filter : str
-        ``"hard"`` (one compare), ``"pcf"`` (percentage-closer filtering on
+        ``"hard"`` (a sharp edge between texel centres), ``"pcf"`` (percentage-closer filtering on
         a grid), ``"random"`` (jittered disk, early exit) or ``"pcss"``
         (penumbra sized by the light, contact hardening).
     pcf_taps : int
