@@ -18,6 +18,29 @@ struct PvsReceiver
   float lit;     // 0 when the visible side faces away from the light
 };
 
+// A map's texel grid around a receiver. Texel positions t count texels on
+// the map (texel k spans [k, k + 1), its centre at k + 0.5) and map back to
+// light space as origin + t.x * du + t.y * dv: a direction from the light for
+// cube and spot maps (on the plane of the receiver's cube face or of the
+// spot's map), a point across the light for sun maps. Every compare reads
+// one texel at its centre and tests the receiver's tangent plane along the
+// ray through that same centre, so a flat receiver meets exactly the depth
+// its own rasterisation stored, with no offset, at any incidence.
+struct PvsTexelFrame
+{
+  vec2 at;       // the receiver's own texel position
+  float size;    // texels per side of the map (face)
+  vec3 origin;
+  vec3 du;
+  vec3 dv;
+};
+
+// Centre of the texel holding texel position t.
+vec2 pvsTexelCentre(vec2 t)
+{
+  return floor(t) + 0.5;
+}
+
 // Build a receiver from a point `p` and normal `n` in light space.
 // toLight: unit vector from the point towards the light.
 // bias: x normal offset, y constant bias, z slope bias, all in texels.
@@ -68,15 +91,12 @@ PvsReceiver pvsPositionalReceiver(mat4 viewToLight, vec4 params, vec4 cone, vec3
   return r;
 }
 
-// Direction from a point light to a tap `offset` texels across the lookup
-// direction, and the receiver plane's distance along it.
-vec3 pvsTapDirection(PvsReceiver r, vec2 offset, out float planeDistance)
+// Direction from a point light to a tap `offset` texels across the lookup direction.
+vec3 pvsTapDirection(PvsReceiver r, vec2 offset)
 {
   vec3 u, v;
   pvsAcross(normalize(r.q), u, v);
-  vec3 direction = normalize(r.q + (offset.x * u + offset.y * v) * r.texel);
-  planeDistance = pvsPlaneDistance(r, direction);
-  return direction;
+  return normalize(r.q + (offset.x * u + offset.y * v) * r.texel);
 }
 
 // PCSS radii in texels for a spherical light of radius params.z whose nearest

@@ -16,17 +16,79 @@ PvsReceiver pvsCubeReceiver(PvsCubeMap map, mat4 viewToLight, vec3 bias, vec3 po
   return pvsPositionalReceiver(viewToLight, map.params, map.cone, bias, posVC, normalVC);
 }
 
-float pvsCubeCompare(samplerCubeShadow cube, PvsCubeMap map, PvsReceiver r, vec2 offset)
+// The cube face a direction falls on: its major axis (signed) and the two
+// axes across it.
+void pvsCubeFace(vec3 d, out vec3 major, out vec3 s, out vec3 t)
 {
-  float planeDistance;
-  vec3 direction = pvsTapDirection(r, offset, planeDistance);
-  return texture(cube, vec4(direction, clamp((planeDistance - r.bias) / map.params.x, 0.0, 1.0)));
+  vec3 a = abs(d);
+  if (a.x >= a.y && a.x >= a.z)
+  {
+    major = vec3(sign(d.x), 0.0, 0.0);
+    s = vec3(0.0, 1.0, 0.0);
+    t = vec3(0.0, 0.0, 1.0);
+  }
+  else if (a.y >= a.z)
+  {
+    major = vec3(0.0, sign(d.y), 0.0);
+    s = vec3(1.0, 0.0, 0.0);
+    t = vec3(0.0, 0.0, 1.0);
+  }
+  else
+  {
+    major = vec3(0.0, 0.0, sign(d.z));
+    s = vec3(1.0, 0.0, 0.0);
+    t = vec3(0.0, 1.0, 0.0);
+  }
 }
 
-float pvsCubeBlocker(samplerCube raw, PvsCubeMap map, PvsReceiver r, vec2 offset, out float receiverDepth)
+// The texel grid of the receiver's face, on the plane one unit along its major axis.
+PvsTexelFrame pvsCubeFrame(samplerCubeShadow cube, PvsCubeMap map, PvsReceiver r)
 {
-  vec3 direction = pvsTapDirection(r, offset, receiverDepth);
-  receiverDepth -= r.bias;
+  PvsTexelFrame f;
+  f.size = float(textureSize(cube, 0).x);
+  vec3 major, s, t;
+  pvsCubeFace(r.q, major, s, t);
+  vec3 onFace = r.q / dot(r.q, major);
+  f.at = (vec2(dot(onFace, s), dot(onFace, t)) + 1.0) * (0.5 * f.size);
+  f.origin = major - s - t;
+  f.du = s * (2.0 / f.size);
+  f.dv = t * (2.0 / f.size);
+  return f;
+}
+
+vec2 pvsCubeTap(PvsCubeMap map, PvsReceiver r, PvsTexelFrame f, vec2 offset)
+{
+  vec3 direction = pvsTapDirection(r, offset);
+  vec3 major = f.origin + (f.du + f.dv) * (0.5 * f.size);
+  vec3 onFace = direction / max(dot(direction, major), 1e-6) - f.origin;
+  return vec2(dot(onFace, f.du), dot(onFace, f.dv)) / dot(f.du, f.du);
+}
+
+// Direction through the centre of the texel holding t, on whichever face
+// the direction to t falls (taps may cross an edge of the receiver's face).
+vec3 pvsCubeTexelDirection(PvsTexelFrame f, vec2 t)
+{
+  vec3 major, s, u;
+  vec3 d = f.origin + f.du * t.x + f.dv * t.y;
+  pvsCubeFace(d, major, s, u);
+  vec2 onFace = vec2(dot(d, s), dot(d, u)) / dot(d, major);
+  vec2 texel = min(floor((onFace + 1.0) * (0.5 * f.size)), f.size - 1.0) + 0.5;
+  onFace = texel * (2.0 / f.size) - 1.0;
+  return normalize(major + s * onFace.x + u * onFace.y);
+}
+
+float pvsCubeTexel(samplerCubeShadow cube, PvsCubeMap map, PvsReceiver r, PvsTexelFrame f, vec2 t)
+{
+  vec3 direction = pvsCubeTexelDirection(f, t);
+  float depth = pvsPlaneDistance(r, direction) - r.bias;
+  return texture(cube, vec4(direction, clamp(depth / map.params.x, 0.0, 1.0)));
+}
+
+float pvsCubeTexelDepth(samplerCube raw, PvsCubeMap map, PvsReceiver r, PvsTexelFrame f, vec2 t,
+                        out float receiverDepth)
+{
+  vec3 direction = pvsCubeTexelDirection(f, t);
+  receiverDepth = pvsPlaneDistance(r, direction) - r.bias;
   return texture(raw, direction).r * map.params.x;
 }
 

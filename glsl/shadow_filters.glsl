@@ -4,14 +4,20 @@
 //   PVS_MAP           the kind's parameter struct         (PvsCubeMap, ...)
 //   PVS_COMPARE_MAP   its comparison sampler type         (samplerCubeShadow, ...)
 //   PVS_RAW_MAP       its plain sampler type              (samplerCube, ...)
-//   PVS_COMPARE       tap compare: (map, kind, receiver, offset) -> visibility
-//   PVS_BLOCKER       tap depth: (raw, kind, receiver, offset, out receiverDepth) -> blocker depth
+//   PVS_FRAME         (map, kind, receiver) -> PvsTexelFrame, the map's texel grid there
+//   PVS_TAP           (kind, receiver, frame, offset) -> texel position of a tap `offset`
+//                     texels across the lookup direction
+//   PVS_TEXEL         (map, kind, receiver, frame, t) -> visibility of the texel holding t
+//   PVS_TEXEL_DEPTH   (raw, kind, receiver, frame, t, out receiverDepth) -> its stored depth
 //   PVS_SEARCH_RADIUS / PVS_PENUMBRA_RADIUS   in texels, for PCSS
 //   PVS_LIT, PVS_HARD, PVS_PCF, PVS_RANDOM, PVS_PCSS   names of the filter functions
+//   PVS_BOX                                            name of the box both hard and pcf use
 //   PVS_WITH_LIT, PVS_WITH_HARD, ...                   which to compile
 //
-// Every tap is a hardware comparison with linear filtering (2x2 texels), each
-// against the receiver's own tangent plane along the tap.
+// Every compare reads one texel at its centre against the receiver's own
+// tangent plane along the ray through that centre (see PvsTexelFrame), so no
+// filter moves a shadow's edge: the hard compare puts it where the map's
+// texel centres put it, and the soft filters are centred on the receiver.
 
 #ifdef PVS_WITH_LIT
 // No map to read (nothing can shadow a visible receiver): lit where the
@@ -22,30 +28,47 @@ float PVS_LIT(PVS_MAP kind, PvsReceiver r)
 }
 #endif
 
+#if defined(PVS_WITH_HARD) || defined(PVS_WITH_PCF)
+// What side x side bilinear compares one texel apart would return, from the
+// (side + 1)^2 texels they touch, each compared at its own centre: a box of
+// side texels centred on the receiver, its first and last texels weighted by
+// how much of them it covers.
+float PVS_BOX(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r, int side)
+{
+  PvsTexelFrame f = PVS_FRAME(depthMap, kind, r);
+  vec2 start = f.at - 0.5 * float(side);
+  vec2 first = floor(start);
+  vec2 cut = start - first;
+  float sum = 0.0;
+  for (int i = 0; i <= side; ++i)
+  {
+    float wx = i == 0 ? 1.0 - cut.x : (i == side ? cut.x : 1.0);
+    for (int j = 0; j <= side; ++j)
+    {
+      float wy = j == 0 ? 1.0 - cut.y : (j == side ? cut.y : 1.0);
+      sum += wx * wy * PVS_TEXEL(depthMap, kind, r, f, first + vec2(float(i), float(j)) + 0.5);
+    }
+  }
+  return sum / float(side * side);
+}
+#endif
+
 #ifdef PVS_WITH_HARD
+// The 3 x 3 texels round the receiver, each compared at its centre, weighted
+// as two by two bilinear compares would weight them, and cut at one half: a
+// hard edge through the middle of the texels on either side of it, not along
+// the texels' own outlines (a staircase that, seen up close, is many pixels
+// wide), and still sharp.
 float PVS_HARD(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r)
 {
-  return r.lit == 0.0 ? 0.0 : PVS_COMPARE(depthMap, kind, r, vec2(0.0));
+  return r.lit == 0.0 ? 0.0 : step(0.5, PVS_BOX(depthMap, kind, r, 2));
 }
 #endif
 
 #ifdef PVS_WITH_PCF
-// side x side taps one texel apart.
 float PVS_PCF(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r, int side)
 {
-  if (r.lit == 0.0)
-  {
-    return 0.0;
-  }
-  float sum = 0.0;
-  for (int i = 0; i < side; ++i)
-  {
-    for (int j = 0; j < side; ++j)
-    {
-      sum += PVS_COMPARE(depthMap, kind, r, vec2(float(i), float(j)) - 0.5 * float(side - 1));
-    }
-  }
-  return sum / float(side * side);
+  return r.lit == 0.0 ? 0.0 : PVS_BOX(depthMap, kind, r, side);
 }
 #endif
 
@@ -60,10 +83,11 @@ float PVS_RANDOM(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r, sampler3
   {
     return 0.0;
   }
+  PvsTexelFrame f = PVS_FRAME(depthMap, kind, r);
   float sum = 0.0;
   for (int i = 0; i < 8; ++i)
   {
-    sum += PVS_COMPARE(depthMap, kind, r, radius * pvsDiskOffset(offsets, i));
+    sum += PVS_TEXEL(depthMap, kind, r, f, PVS_TAP(kind, r, f, radius * pvsDiskOffset(offsets, i)));
   }
   if (sum < 0.001 || sum > 7.999 || samples <= 8)
   {
@@ -71,7 +95,7 @@ float PVS_RANDOM(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r, sampler3
   }
   for (int i = 8; i < samples; ++i)
   {
-    sum += PVS_COMPARE(depthMap, kind, r, radius * pvsDiskOffset(offsets, i));
+    sum += PVS_TEXEL(depthMap, kind, r, f, PVS_TAP(kind, r, f, radius * pvsDiskOffset(offsets, i)));
   }
   return sum / float(samples);
 }
@@ -88,13 +112,15 @@ float PVS_PCSS(PVS_COMPARE_MAP depthMap, PVS_RAW_MAP raw, PVS_MAP kind, PvsRecei
   {
     return 0.0;
   }
+  PvsTexelFrame f = PVS_FRAME(depthMap, kind, r);
   float search = clamp(PVS_SEARCH_RADIUS(kind, r), 1.0, 32.0);
   float blockers = 0.0;
   float depthSum = 0.0;
   for (int i = 0; i < 16; ++i)
   {
     float receiverDepth;
-    float depth = PVS_BLOCKER(raw, kind, r, search * pvsDiskOffset(offsets, i), receiverDepth);
+    vec2 t = PVS_TAP(kind, r, f, search * pvsDiskOffset(offsets, i));
+    float depth = PVS_TEXEL_DEPTH(raw, kind, r, f, t, receiverDepth);
     if (depth < receiverDepth)
     {
       blockers += 1.0;

@@ -18,29 +18,62 @@ PvsReceiver pvsSpotReceiver(PvsSpotMap map, mat4 viewToLight, vec3 bias, vec3 po
   return pvsPositionalReceiver(viewToLight, map.params, map.cone, bias, posVC, normalVC);
 }
 
-vec3 pvsSpotTap(PvsSpotMap map, PvsReceiver r, vec2 offset, out float planeDistance)
+// The map's texel grid: the rows x, y and w of lightToClip (a projection
+// from the light's position) give the direction through map position (X, Y)
+// as cross(x - X w, y - Y w), which is linear in X and Y.
+PvsTexelFrame pvsSpotFrame(sampler2DShadow depthMap, PvsSpotMap map, PvsReceiver r)
 {
-  vec3 direction = pvsTapDirection(r, offset, planeDistance);
-  vec4 clip = map.lightToClip * vec4(direction, 1.0);
-  return vec3(clip.xy / clip.w * 0.5 + 0.5, clip.w);
+  PvsTexelFrame f;
+  f.size = float(textureSize(depthMap, 0).x);
+  mat4 m = map.lightToClip;
+  vec3 x = vec3(m[0][0], m[1][0], m[2][0]);
+  vec3 y = vec3(m[0][1], m[1][1], m[2][1]);
+  vec3 w = vec3(m[0][3], m[1][3], m[2][3]);
+  vec3 xy = cross(x, y);
+  vec3 yw = cross(y, w);
+  vec3 wx = cross(w, x);
+  float front = dot(xy, w) < 0.0 ? -1.0 : 1.0;
+  f.origin = front * (xy - yw - wx);
+  f.du = front * yw * (2.0 / f.size);
+  f.dv = front * wx * (2.0 / f.size);
+  float along = dot(w, r.q);
+  f.at = along > 0.0 ? (vec2(dot(x, r.q), dot(y, r.q)) / along * 0.5 + 0.5) * f.size : vec2(-1.0);
+  return f;
 }
 
-float pvsSpotCompare(sampler2DShadow depthMap, PvsSpotMap map, PvsReceiver r, vec2 offset)
+vec2 pvsSpotTap(PvsSpotMap map, PvsReceiver r, PvsTexelFrame f, vec2 offset)
 {
-  float planeDistance;
-  vec3 uv = pvsSpotTap(map, r, offset, planeDistance);
-  if (uv.z <= 0.0)
+  vec4 clip = map.lightToClip * vec4(pvsTapDirection(r, offset), 1.0);
+  return clip.w > 0.0 ? (clip.xy / clip.w * 0.5 + 0.5) * f.size : vec2(-1.0);
+}
+
+bool pvsSpotOutside(PvsTexelFrame f, vec2 t)
+{
+  return any(lessThan(t, vec2(0.0))) || any(greaterThanEqual(t, vec2(f.size)));
+}
+
+vec3 pvsSpotTexelDirection(PvsTexelFrame f, vec2 centre)
+{
+  return normalize(f.origin + f.du * centre.x + f.dv * centre.y);
+}
+
+float pvsSpotTexel(sampler2DShadow depthMap, PvsSpotMap map, PvsReceiver r, PvsTexelFrame f, vec2 t)
+{
+  if (pvsSpotOutside(f, t))
   {
     return 1.0;
   }
-  return texture(depthMap, vec3(uv.xy, clamp((planeDistance - r.bias) / map.params.x, 0.0, 1.0)));
+  vec2 centre = pvsTexelCentre(t);
+  float depth = pvsPlaneDistance(r, pvsSpotTexelDirection(f, centre)) - r.bias;
+  return texture(depthMap, vec3(centre / f.size, clamp(depth / map.params.x, 0.0, 1.0)));
 }
 
-float pvsSpotBlocker(sampler2D raw, PvsSpotMap map, PvsReceiver r, vec2 offset, out float receiverDepth)
+float pvsSpotTexelDepth(sampler2D raw, PvsSpotMap map, PvsReceiver r, PvsTexelFrame f, vec2 t,
+                        out float receiverDepth)
 {
-  vec3 uv = pvsSpotTap(map, r, offset, receiverDepth);
-  receiverDepth -= r.bias;
-  return uv.z <= 0.0 ? map.params.x : texture(raw, uv.xy).r * map.params.x;
+  vec2 centre = pvsTexelCentre(t);
+  receiverDepth = pvsPlaneDistance(r, pvsSpotTexelDirection(f, centre)) - r.bias;
+  return pvsSpotOutside(f, t) ? map.params.x : texture(raw, centre / f.size).r * map.params.x;
 }
 
 float pvsSpotSearchRadius(PvsSpotMap map, PvsReceiver r)

@@ -18,34 +18,49 @@ PvsReceiver pvsSunReceiver(PvsSunMap map, mat4 viewToLight, vec3 bias, vec3 posV
                      map.params.y, bias);
 }
 
-// Where a tap lands on the map (uv) and the receiver plane's depth there.
-vec2 pvsSunTap(PvsSunMap map, PvsReceiver r, vec2 offset, out float planeDepth)
+// The map's texel grid in light space: x and y across the light.
+PvsTexelFrame pvsSunFrame(sampler2DShadow depthMap, PvsSunMap map, PvsReceiver r)
 {
-  vec2 across = offset * r.texel;
-  planeDepth = r.q.z;
-  if (abs(r.n.z) > 1e-3)
-  {
-    planeDepth -= dot(r.n.xy, across) / r.n.z;
-  }
-  return (r.q.xy + across) / (2.0 * map.params.z) + 0.5;
+  PvsTexelFrame f;
+  f.size = float(textureSize(depthMap, 0).x);
+  float width = 2.0 * map.params.z;
+  f.at = (r.q.xy / width + 0.5) * f.size;
+  f.origin = vec3(-map.params.zz, 0.0);
+  f.du = vec3(width / f.size, 0.0, 0.0);
+  f.dv = vec3(0.0, width / f.size, 0.0);
+  return f;
 }
 
-float pvsSunCompare(sampler2DShadow depthMap, PvsSunMap map, PvsReceiver r, vec2 offset)
+// A sun map's texels are r.texel wide: taps are offsets on its grid.
+vec2 pvsSunTap(PvsSunMap map, PvsReceiver r, PvsTexelFrame f, vec2 offset)
 {
-  float planeDepth;
-  vec2 uv = pvsSunTap(map, r, offset, planeDepth);
-  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
+  return f.at + offset;
+}
+
+// Depth of the receiver's tangent plane under a texel centre.
+float pvsSunPlaneDepth(PvsReceiver r, PvsTexelFrame f, vec2 centre)
+{
+  vec2 across = (f.origin + f.du * centre.x + f.dv * centre.y).xy - r.q.xy;
+  return abs(r.n.z) > 1e-3 ? r.q.z - dot(r.n.xy, across) / r.n.z : r.q.z;
+}
+
+float pvsSunTexel(sampler2DShadow depthMap, PvsSunMap map, PvsReceiver r, PvsTexelFrame f, vec2 t)
+{
+  if (any(lessThan(t, vec2(0.0))) || any(greaterThanEqual(t, vec2(f.size))))
   {
     return 1.0;
   }
-  return texture(depthMap, vec3(uv, clamp((planeDepth - r.bias) / map.params.x, 0.0, 1.0)));
+  vec2 centre = pvsTexelCentre(t);
+  float depth = pvsSunPlaneDepth(r, f, centre) - r.bias;
+  return texture(depthMap, vec3(centre / f.size, clamp(depth / map.params.x, 0.0, 1.0)));
 }
 
-float pvsSunBlocker(sampler2D raw, PvsSunMap map, PvsReceiver r, vec2 offset, out float receiverDepth)
+float pvsSunTexelDepth(sampler2D raw, PvsSunMap map, PvsReceiver r, PvsTexelFrame f, vec2 t,
+                       out float receiverDepth)
 {
-  vec2 uv = pvsSunTap(map, r, offset, receiverDepth);
-  receiverDepth -= r.bias;
-  return texture(raw, uv).r * map.params.x;
+  vec2 centre = pvsTexelCentre(t);
+  receiverDepth = pvsSunPlaneDepth(r, f, centre) - r.bias;
+  return texture(raw, centre / f.size).r * map.params.x;
 }
 
 float pvsSunSearchRadius(PvsSunMap map, PvsReceiver r)

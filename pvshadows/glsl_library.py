@@ -19,8 +19,10 @@ KINDS = {
         "PVS_MAP": "PvsCubeMap",
         "PVS_COMPARE_MAP": "samplerCubeShadow",
         "PVS_RAW_MAP": "samplerCube",
-        "PVS_COMPARE": "pvsCubeCompare",
-        "PVS_BLOCKER": "pvsCubeBlocker",
+        "PVS_FRAME": "pvsCubeFrame",
+        "PVS_TAP": "pvsCubeTap",
+        "PVS_TEXEL": "pvsCubeTexel",
+        "PVS_TEXEL_DEPTH": "pvsCubeTexelDepth",
         "PVS_SEARCH_RADIUS": "pvsCubeSearchRadius",
         "PVS_PENUMBRA_RADIUS": "pvsCubePenumbraRadius",
     },
@@ -29,8 +31,10 @@ KINDS = {
         "PVS_MAP": "PvsSpotMap",
         "PVS_COMPARE_MAP": "sampler2DShadow",
         "PVS_RAW_MAP": "sampler2D",
-        "PVS_COMPARE": "pvsSpotCompare",
-        "PVS_BLOCKER": "pvsSpotBlocker",
+        "PVS_FRAME": "pvsSpotFrame",
+        "PVS_TAP": "pvsSpotTap",
+        "PVS_TEXEL": "pvsSpotTexel",
+        "PVS_TEXEL_DEPTH": "pvsSpotTexelDepth",
         "PVS_SEARCH_RADIUS": "pvsSpotSearchRadius",
         "PVS_PENUMBRA_RADIUS": "pvsSpotPenumbraRadius",
     },
@@ -39,8 +43,10 @@ KINDS = {
         "PVS_MAP": "PvsSunMap",
         "PVS_COMPARE_MAP": "sampler2DShadow",
         "PVS_RAW_MAP": "sampler2D",
-        "PVS_COMPARE": "pvsSunCompare",
-        "PVS_BLOCKER": "pvsSunBlocker",
+        "PVS_FRAME": "pvsSunFrame",
+        "PVS_TAP": "pvsSunTap",
+        "PVS_TEXEL": "pvsSunTexel",
+        "PVS_TEXEL_DEPTH": "pvsSunTexelDepth",
         "PVS_SEARCH_RADIUS": "pvsSunSearchRadius",
         "PVS_PENUMBRA_RADIUS": "pvsSunPenumbraRadius",
     },
@@ -78,6 +84,7 @@ def _instance(kind: str, filters: set[str]) -> str:
     names = {k: v for k, v in KINDS[kind].items() if k != "file"}
     names.update({f"PVS_{f.upper()}": filter_function(kind, f) for f in FILTERS})
     names.update({f"PVS_WITH_{f.upper()}": "" for f in filters})
+    names["PVS_BOX"] = filter_function(kind, "box")
     defines = "".join(
         f"#define {name} {value}\n".replace(" \n", "\n") for name, value in names.items()
     )

@@ -2,8 +2,13 @@
 
 The frame is drawn again with every receiver writing ``(visibility, 1, 0)``
 and every other actor ``(0, 0, 0)`` over a black background, so the green
-channel is the share of the pixel covered by a receiver (multisampling and
-SSAA average it like the red one) and red over green is the visibility.
+channel says whether a receiver is seen and red over green is the
+visibility. That frame is drawn with one sample per pixel, so each pixel
+shows the surface at its centre, as the reference's primary ray does: a
+multisampled window would resolve a pixel on an object's outline to a
+(gamma-encoded) blend of two surfaces' visibilities. SSAA's larger
+framebuffer averages the channels like the samples of one pixel, so the green
+one is then the share of the pixel covered by a receiver.
 
 Image passes that recolour the finished frame (eye-dome lighting, SSAO,
 blur, depth of field: ``vtkImageProcessingPass``) are left out of that
@@ -131,11 +136,13 @@ def read_visibility(
         renderer.GetGradientBackground(),
         renderer.GetTexturedBackground(),
         renderer.GetUseFXAA(),
+        window.GetMultiSamples(),
     )
     renderer.SetBackground(0.0, 0.0, 0.0)
     renderer.GradientBackgroundOff()
     renderer.TexturedBackgroundOff()
     renderer.UseFXAAOff()
+    window.SetMultiSamples(0)
     shadows.probe_index = vtk_index
     try:
         with _WithoutImagePasses(renderer):
@@ -148,6 +155,7 @@ def read_visibility(
         renderer.SetGradientBackground(saved[1])
         renderer.SetTexturedBackground(saved[2])
         renderer.SetUseFXAA(saved[3])
+        window.SetMultiSamples(saved[4])
         window.Render()
     rows, cols = _renderer_box(renderer, pixels.shape[1], pixels.shape[0])
     region = pixels[rows, cols][::-1]

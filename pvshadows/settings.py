@@ -67,7 +67,7 @@ class ShadowSettings:
     resolution : int
         Texels per side of each shadow-map face, 64 to 4096.
     filter : str
-        ``"hard"`` (one compare), ``"pcf"`` (percentage-closer filtering on
+        ``"hard"`` (a sharp edge between texel centres), ``"pcf"`` (percentage-closer filtering on
         a grid), ``"random"`` (jittered disk, early exit) or ``"pcss"``
         (penumbra sized by the light, contact hardening).
     pcf_taps : int
@@ -113,12 +113,14 @@ class ShadowSettings:
     -----
     The three biases are in texels of the shadow map at the receiver's
     distance, so the same values work at every scene scale and resolution.
-    The defaults were chosen by measurement against ray tracing: below a
-    normal offset of 0.5 texel a bare plane lit at grazing incidence shows
-    acne; above 1 texel shadow outlines grow measurably. With all three at
-    0 each surface is compared with its own depth and about half of it
-    shadows itself in speckles (acne: 43 % of the lit pixels of the standard
-    scene are wrong); :func:`validated` warns.
+    Every compare reads one texel at its centre against the receiver's
+    tangent plane along the ray through that centre, so a flat receiver
+    meets the very depth it wrote and needs no offset at any incidence: the
+    small default depth bias only covers rounding. A normal offset moves
+    every shadow edge towards the light by up to that many texels (shadows
+    shrink), so it is 0 by default. With all three at 0 the compare has no
+    margin for rounding and lit surfaces may shadow themselves in speckles
+    (acne); :func:`validated` warns.
     """
 
     technique: str = "auto"
@@ -130,9 +132,9 @@ class ShadowSettings:
     filter_radius: float = 2.0
     light_size: float = 0.0
     passes: str = "single"
-    bias: float = 0.5
-    slope_bias: float = 0.5
-    normal_offset: float = 0.75
+    bias: float = 0.2
+    slope_bias: float = 0.1
+    normal_offset: float = 0.0
     cull_front: bool = False
     zmode: str = "auto"
     extrude: str = "gpu"

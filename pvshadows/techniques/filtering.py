@@ -140,7 +140,6 @@ class FilterBindings:
         bias = (settings.normal_offset, settings.bias, settings.slope_bias, 0.0)
         if depth is None:
             return {f"pvsBias{i}": bias}
-        depth.set_linear(settings.filter != "hard")
         uniforms: dict[str, object] = {
             f"pvsDepth{i}": self._activate(depth.texture),
             f"pvsBias{i}": bias,
