@@ -145,7 +145,8 @@ class RendererShadows:
                 self._active.append(technique)
         for technique in self._techniques.values():
             technique.keep_only(plans)
-        self._buffers.keep_only(snapshot.actors)
+        if snapshot is not self.snapshot:
+            self._buffers.keep_only(snapshot.actors)
         self._apply_edits(snapshot, shadings, uniforms)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
 
