@@ -155,7 +155,8 @@ class RendererShadows:
         park_active_unit(self._window)
         for technique in self._techniques.values():
             technique.keep_only(plans)
-        self._buffers.keep_only(snapshot.actors)
+        if snapshot is not self.snapshot:
+            self._buffers.keep_only(snapshot.actors)
         self._where = "receiver shader edits"
         self._apply_edits(snapshot, shadings, uniforms)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report

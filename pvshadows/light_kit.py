@@ -21,8 +21,7 @@ never chose and swing as the camera orbits. So, by default:
 
 from __future__ import annotations
 
-import vtk
-
+from pvshadows import _vtk as vtk
 from pvshadows.scene import vtk_id
 
 

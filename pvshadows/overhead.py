@@ -175,7 +175,7 @@ def build_scene(scene: OverheadScene, window_size: tuple[int, int] = WINDOW):
     --------
     >>> from pvshadows.overhead import OverheadScene, build_scene
     >>> plotter, lights, moved = build_scene(OverheadScene("actors", actors=3), (160, 120))
-    >>> len(plotter.renderer.actors), len(lights)
+    >>> plotter.renderer.GetActors().GetNumberOfItems(), len(lights)
     (4, 1)
     """
     import pyvista as pv
@@ -479,7 +479,7 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
         "against the same scene without shadows), and the first frame after `enable()` "
         "(llvmpipe, wall seconds):",
         "",
-        "| scene | plain frame ms | static | camera moving | light moving | actor moving "
+        "| overhead scene | plain frame ms | static | camera moving | light moving | actor moving "
         "| first frame s (plain) | frames |",
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |",
     ]
@@ -491,7 +491,11 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
     ]
     fits = growth_fits(rows)
     if fits:
-        lines += ["", "Growth of the added time, fitted:", ""] + [f"- {fit}" for fit in fits]
+        lines += ["", "Growth of the added time with the scene, fitted as c * x^k:", ""]
+        lines += ["| series | motion | added ms |", "| --- | --- | --- |"]
+        lines += [
+            "| {} | {} | {} |".format(*fit.replace(": ", ", ", 1).split(", ", 2)) for fit in fits
+        ]
     text = "\n".join(lines) + "\n"
     (out / "overhead.md").write_text(text, encoding="utf-8")
     return text

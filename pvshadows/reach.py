@@ -41,6 +41,7 @@ class ReachCache:
 
     def __init__(self) -> None:
         self._lights: dict[str, tuple[tuple, dict[int, tuple[ActorState, bool]]]] = {}
+        self._kept: tuple[frozenset[str], list[ActorState]] | None = None
         #: Cone tests run since the cache was made (one per actor tested).
         self.tests = 0
 
@@ -87,6 +88,9 @@ class ReachCache:
         states : list of ActorState
             This frame's actor states.
         """
+        if self._kept is not None and self._kept[0] == lights and self._kept[1] is states:
+            return
+        self._kept = (frozenset(lights), states)
         alive = {id(s) for s in states}
         self._lights = {
             key: (pose, {i: v for i, v in kept.items() if i in alive})

@@ -79,6 +79,8 @@ class ReceiverEdits:
         self._snapshot: Snapshot | None = None
         self._shadings: list[LightShading] = []
         self._values: dict[str, object] = {}
+        self._receiving: list[vtk.vtkUniforms] = []
+        self._standing: list[vtk.vtkUniforms] = []
         #: Uniform values handed to VTK since this object was made (one per actor and uniform).
         self.uniform_calls = 0
         #: Times an actor's replacements were worked out again.
@@ -108,6 +110,15 @@ class ReceiverEdits:
             return
         setters = [uniform_setter(n, v) for n, v in (changed or {}).items()]
         probe = [s for n, s in zip(changed or {}, setters, strict=True) if n == PROBE_UNIFORM]
+        self._values = dict(uniforms)
+        if snapshot is self._snapshot and same_lights and changed is not None:
+            # Only values changed (the camera moved, say): set just those, on every actor.
+            for targets, chosen in ((self._receiving, setters), (self._standing, probe)):
+                for uniforms_of_actor in targets:
+                    for setter in chosen:
+                        setter(uniforms_of_actor)
+                self.uniform_calls += len(targets) * len(chosen)
+            return
         touched = set()
         for state in snapshot.receivers:
             key = state.key()[0]
@@ -130,7 +141,9 @@ class ReceiverEdits:
             self._states[key] = None
         for key in set(self._edits) - touched:
             self._forget(key)
-        self._snapshot, self._shadings, self._values = snapshot, list(shadings), dict(uniforms)
+        self._snapshot, self._shadings = snapshot, list(shadings)
+        self._receiving = [self._uniforms[s.key()[0]] for s in snapshot.receivers]
+        self._standing = [self._uniforms[a.__this__] for a in snapshot.bystanders]
 
     def _send(
         self, actor: vtk.vtkActor, key: str, only_changed: bool, setters: list, values: dict
@@ -169,4 +182,5 @@ class ReceiverEdits:
         for key in list(self._edits):
             self._forget(key)
         self._snapshot, self._shadings, self._values = None, [], {}
+        self._receiving, self._standing = [], []
         self._replacements.clear()

@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import vtk
+from pvshadows import _vtk as vtk
 
 #: How much larger each way ``vtkSSAAPass`` draws than its target (VTK's ``sqrt(5.0)``).
 SSAA_FACTOR = math.sqrt(5.0)

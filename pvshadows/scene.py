@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pyvista as pv
+from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from pvshadows import _vtk as vtk
 from pvshadows.closed import is_closed_outward
@@ -137,6 +138,21 @@ def _surface_of(data: vtk.vtkDataObject) -> pv.PolyData | None:
     return mesh
 
 
+def _triangles_as_they_are(surface: pv.PolyData) -> np.ndarray | None:
+    """Return the polygons of a surface made only of triangles, without copying through a filter.
+
+    ``None`` when it also has strips or polygons of other sizes (they need
+    VTK's triangulation).
+    """
+    if surface.GetNumberOfStrips() > 0:
+        return None
+    polygons = surface.GetPolys()
+    if polygons.GetNumberOfCells() == 0 or polygons.IsHomogeneous() != 3:
+        return None
+    connectivity = vtk_to_numpy(polygons.GetConnectivityArray())
+    return connectivity.astype(np.int64, copy=False).reshape(-1, 3)
+
+
 def read_triangles(actor: vtk.vtkActor, name: str = "actor") -> ActorTriangles | None:
     """Read an actor's surface as triangles.
 
@@ -180,9 +196,11 @@ def read_triangles(actor: vtk.vtkActor, name: str = "actor") -> ActorTriangles |
     has_polygons = surface.GetNumberOfPolys() + surface.GetNumberOfStrips() > 0
     if not has_polygons:
         return None
-    triangulated = surface.triangulate(pass_lines=False, pass_verts=False)
-    triangles = np.asarray(triangulated.regular_faces, dtype=np.int64).reshape(-1, 3)
-    points = np.asarray(triangulated.points, dtype=np.float64)
+    triangles = _triangles_as_they_are(surface)
+    if triangles is None:
+        surface = surface.triangulate(pass_lines=False, pass_verts=False)
+        triangles = np.asarray(surface.regular_faces, dtype=np.int64).reshape(-1, 3)
+    points = np.asarray(surface.points, dtype=np.float64)
     if not np.isfinite(points).all():
         bad = int((~np.isfinite(points).all(axis=1)).sum())
         msg = (
@@ -191,13 +209,16 @@ def read_triangles(actor: vtk.vtkActor, name: str = "actor") -> ActorTriangles |
             ".all(axis=1))"
         )
         raise ValueError(msg)
-    used = np.unique(triangles) if triangles.size else np.zeros(0, np.int64)
-    if used.size == 0:
+    if triangles.size == 0:
         return None
-    remap = np.full(points.shape[0], -1, dtype=np.int64)
-    remap[used] = np.arange(used.size)
-    points = points[used]
-    triangles = remap[triangles]
+    marked = np.zeros(points.shape[0], dtype=bool)
+    marked[triangles.ravel()] = True
+    if not marked.all():
+        used = np.flatnonzero(marked)
+        remap = np.full(points.shape[0], -1, dtype=np.int64)
+        remap[used] = np.arange(used.size)
+        points = points[used]
+        triangles = remap[triangles]
     center = 0.5 * (points.min(0) + points.max(0))
     return ActorTriangles(center, points - center, triangles.astype(np.uint32), mtime)
 

@@ -1,9 +1,10 @@
 """What a renderer holds in one frame: casters, receivers and their geometry.
 
-Each frame reads one VTK modification time per actor (its redraw time, which
-covers the actor, its property, its mapper and the mapper's input) and its
-roles; an actor whose stamp did not change keeps last frame's state (matrix,
-bounds, name, triangles) untouched. Triangles are re-read only when the
+Each frame reads three VTK modification times per actor (the actor's, which
+covers its property and transform, its mapper's and the mapper's input's)
+and its roles; an actor whose stamp did not change keeps last frame's state
+(matrix, bounds, name, triangles) untouched. The renderer's actor list is
+walked again only when its props changed. Triangles are re-read only when the
 actor's data changed. When no actor changed, the frame gets last frame's
 :class:`Snapshot` itself, so what is derived from it can be kept too.
 """
@@ -194,55 +195,76 @@ class SceneReader:
         True
         """
         cache = self._frames.setdefault(vtk_id(renderer), _RendererCache())
-        entries: dict[str, _Entry] = {}
-        changed = []
         camera = renderer.GetActiveCamera().GetMTime()
-        collection = renderer.GetActors()
-        collection.InitTraversal()
-        for _ in range(collection.GetNumberOfItems()):
-            actor = collection.GetNextActor()
-            key = actor.__this__
-            stamp = (
-                vtk.vtkActor.GetRedrawMTime(actor),
-                self.casting.get(key, True),
-                self.receiving.get(key, True),
-                key in self.planes,
-            )
-            entry = cache.entries.get(key)
-            if isinstance(actor, vtk.vtkFollower):
-                # A follower turns to face the camera: its matrix changes with the camera's.
-                stamp = (*stamp, camera)
-            if entry is None or entry.stamp != stamp:
-                entry = self._entry(actor, key, stamp)
-                changed.append(key)
-            entries[key] = entry
+        props = renderer.GetViewProps().GetMTime()
+        if cache.props != props:
+            collection = renderer.GetActors()
+            collection.InitTraversal()
+            cache.actors = [collection.GetNextActor() for _ in range(collection.GetNumberOfItems())]
+            cache.props = props
+        entries: dict[int, _Entry] = {}
+        changed = []
+        for actor in cache.actors:
+            entry = cache.entries.get(id(actor))
+            if (
+                entry is None
+                or entry.actor is not actor
+                or entry.stamp != self._stamp(entry, camera)
+            ):
+                entry = self._entry(actor, camera)
+                changed.append(entry.key)
+            entries[id(actor)] = entry
         if not changed and entries.keys() == cache.entries.keys() and cache.snapshot:
             return cache.snapshot
         self.reread += len(changed)
-        for key in cache.entries.keys() - entries.keys():
-            self._cache.pop(key, None)
+        kept = {e.key for e in entries.values()}
+        for gone in cache.entries.values():
+            if gone.key not in kept:
+                self._cache.pop(gone.key, None)
         actors = [e.state for e in entries.values() if e.state is not None]
         bystanders = [e.actor for e in entries.values() if e.bystander]
         cache.entries = entries
         cache.snapshot = Snapshot(actors, bystanders, frozenset(changed))
         return cache.snapshot
 
-    def _entry(self, actor: vtk.vtkActor, key: str, stamp: tuple) -> _Entry:
+    def _stamp(self, entry: _Entry, camera: int) -> tuple:
+        """Return the modification times and roles that decide whether an actor is read again."""
+        key = entry.key
+        return (
+            vtk.vtkActor.GetMTime(entry.actor),
+            0 if entry.mapper is None else vtk.vtkObject.GetMTime(entry.mapper),
+            0 if entry.data is None else vtk.vtkDataObject.GetMTime(entry.data),
+            # A follower turns to face the camera: its matrix changes with the camera's.
+            camera if entry.follower else 0,
+            self.casting.get(key, True),
+            self.receiving.get(key, True),
+            key in self.planes,
+        )
+
+    def _entry(self, actor: vtk.vtkActor, camera: int) -> _Entry:
+        entry = _Entry(actor, vtk_id(actor), isinstance(actor, vtk.vtkFollower))
+        entry.state, entry.bystander = self._state_of(actor, entry.key)
+        entry.mapper = actor.GetMapper()
+        entry.data = None if entry.mapper is None else entry.mapper.GetInputDataObject(0, 0)
+        entry.stamp = self._stamp(entry, camera)
+        return entry
+
+    def _state_of(self, actor: vtk.vtkActor, key: str) -> tuple[ActorState | None, bool]:
         if not actor.GetVisibility() or actor.GetMapper() is None:
-            return _Entry(actor, stamp, None, bystander=False)
+            return None, False
         try:
             triangles = self.triangles_of(actor)
         except ValueError as error:
             if self.problems.get(key) != str(error):
-                warnings.warn(f"pvshadows leaves it out: {error}", stacklevel=3)
+                warnings.warn(f"pvshadows leaves it out: {error}", stacklevel=4)
             self.problems[key] = str(error)
-            return _Entry(actor, stamp, None, bystander=True)
+            return None, True
         self.problems.pop(key, None)
         if triangles is None:
-            return _Entry(actor, stamp, None, bystander=True)
+            return None, True
         matrix = actor_matrix(actor)
-        _, caster, receiving, plane = stamp[:4]
-        receiver = receiving and bool(actor.GetProperty().GetLighting())
+        caster = self.casting.get(key, True)
+        receiver = self.receiving.get(key, True) and bool(actor.GetProperty().GetLighting())
         state = ActorState(
             actor,
             self._names(actor),
@@ -251,24 +273,30 @@ class SceneReader:
             world_bounds(triangles, matrix),
             caster,
             receiver,
-            receiver and plane,
+            receiver and key in self.planes,
         )
-        return _Entry(actor, stamp, state, bystander=not receiver)
+        return state, not receiver
 
 
 @dataclass
 class _Entry:
-    """What one actor was at its last change."""
+    """What one actor was at its last change, and the VTK objects whose times say it changed."""
 
     actor: vtk.vtkActor
-    stamp: tuple
-    state: ActorState | None
-    bystander: bool
+    key: str
+    follower: bool
+    state: ActorState | None = None
+    bystander: bool = False
+    mapper: vtk.vtkMapper | None = None
+    data: vtk.vtkDataObject | None = None
+    stamp: tuple = ()
 
 
 @dataclass
 class _RendererCache:
     """The actors one renderer showed in its last frame."""
 
-    entries: dict[str, _Entry] = field(default_factory=dict)
+    props: int = -1
+    actors: list[vtk.vtkActor] = field(default_factory=list)
+    entries: dict[int, _Entry] = field(default_factory=dict)
     snapshot: Snapshot | None = None

@@ -158,7 +158,13 @@ def list_table(caption: str, rows: list[list[str]]) -> str:
 
 
 #: Which generated file each table of ``bench.md`` goes to, by its first header cell.
-SECTIONS = {"light": "presets", "triangles": "silhouettes", "scene": "planner"}
+SECTIONS = {
+    "light": "presets",
+    "triangles": "silhouettes",
+    "scene": "planner",
+    "overhead scene": "overhead",
+    "series": "overhead",
+}
 
 
 def write_bench_rst(bench: Path, out: Path, how: str) -> None:

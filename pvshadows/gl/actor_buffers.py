@@ -53,7 +53,7 @@ class ActorBuffers:
         states : list of ActorState
             The actors of this frame.
         """
-        alive = {vtk_id(s.actor) for s in states}
+        alive = {s.key()[0] for s in states}
         for key in set(self._buffers) - alive:
             self._buffers.pop(key)[1].release()
 

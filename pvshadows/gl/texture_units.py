@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-import vtk
-
+from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 
 

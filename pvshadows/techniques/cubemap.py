@@ -62,13 +62,12 @@ def distance_range(position: np.ndarray, casters: list) -> tuple[float, float]:
     (1.0, 2.474)
     """
     nearest, far = np.inf, 0.0
-    for caster in casters:
-        lo, hi = caster.bounds
-        outside = np.maximum(np.maximum(lo - position, position - hi), 0.0)
-        nearest = min(nearest, float(np.linalg.norm(outside)))
-        far = max(
-            far, float(np.linalg.norm(np.maximum(np.abs(lo - position), np.abs(hi - position))))
-        )
+    if casters:
+        boxes = np.array([caster.bounds for caster in casters]).reshape(-1, 2, 3)
+        lo, hi = boxes[:, 0] - position, boxes[:, 1] - position
+        outside = np.maximum(np.maximum(lo, -hi), 0.0)
+        nearest = float(np.linalg.norm(outside, axis=1).min())
+        far = float(np.linalg.norm(np.maximum(np.abs(lo), np.abs(hi)), axis=1).max())
     return nearest, max(far * 1.01, np.finfo(np.float32).tiny * 1e6)
 
 

@@ -42,6 +42,9 @@ class MapState:
     world_to_light: np.ndarray | None = None
     light_to_clip: np.ndarray | None = None
     params: tuple = ()
+    range_key: tuple | None = None
+    range: tuple[float, float] = (0.0, 1.0)
+    texel: float = 1.0
 
     def release(self) -> None:
         """Release the map."""
@@ -102,16 +105,23 @@ class MapTechnique(PerLightMaps):
     ) -> list[PassReport]:
         pose, settings = plan.pose, plan.settings
         inside = plan.casters
-        nearest, far = distance_range(pose.position, inside or context.snapshot.casters)
-        fit = spot_fit(pose, settings.resolution, far * 1e-4, far)
-        state.world_to_light = translation(-pose.position)
-        state.light_to_clip = fit.light_to_clip
-        state.params = (far, fit.texel, settings.light_size, nearest)
+        ranged = inside or context.snapshot.casters
+        keys = tuple(c.key() for c in inside)
+        range_key = (pose.key(), settings.resolution, keys or tuple(c.key() for c in ranged))
+        if range_key != state.range_key:
+            nearest, far = distance_range(pose.position, ranged)
+            state.range_key, state.range = range_key, (nearest, far)
+            fit = spot_fit(pose, settings.resolution, far * 1e-4, far)
+            state.world_to_light = translation(-pose.position)
+            state.light_to_clip = fit.light_to_clip
+            state.texel = fit.texel
+        nearest, far = state.range
+        state.params = (far, state.texel, settings.light_size, nearest)
         state.drawn = bool(inside)
         if not inside:
             state.key = None
             return [PassReport("map depth", "skipped", "no caster inside the spot's cone")]
-        key = (pose.key(), settings.resolution, settings.cull_front, tuple(c.key() for c in inside))
+        key = (pose.key(), settings.resolution, settings.cull_front, keys)
         detail = f"{len(inside)} of {len(context.snapshot.casters)} casters inside the cone"
         return self._render(
             state, key, inside, context, far, along_z=False, detail=detail, settings=settings

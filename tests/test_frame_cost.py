@@ -1,0 +1,93 @@
+"""A frame costs what changed: counted, not timed (the bench measures the time)."""
+
+import pyvista as pv
+
+from conftest import draw
+from pvshadows.scenes import crowd_scene
+
+
+def counters(pl):
+    shadows = pl.shadows._renderers[0]
+    return {
+        "reread": pl.shadows._reader.reread,
+        "cone tests": shadows.reach.tests,
+        "edits": shadows._edits.edited,
+        "uniforms": shadows._edits.uniform_calls,
+        "waited": shadows._timer.waited,
+    }
+
+
+def change(before, after):
+    return {name: after[name] - before[name] for name in before}
+
+
+def crowd():
+    pl, light, _ = crowd_scene(200)
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    return pl, light
+
+
+def test_a_new_camera_rereads_no_actor_and_tests_no_cone():
+    pl, _ = crowd()
+    receivers = len(pl.shadows._renderers[0].snapshot.receivers)
+    before = counters(pl)
+    pl.camera.Azimuth(10)
+    draw(pl)
+    counted = change(before, counters(pl))
+    assert counted["reread"] == 0
+    assert counted["cone tests"] == 0
+    assert counted["edits"] == 0
+    # Only the camera-dependent uniform (one matrix for the one light) is set again.
+    assert counted["uniforms"] == receivers
+    assert counted["waited"] == 0
+    assert pl.shadows.last_frame.passes_run == 0
+
+
+def test_nothing_changed_costs_no_vtk_call():
+    pl, _ = crowd()
+    before = counters(pl)
+    draw(pl)
+    assert change(before, counters(pl)) == dict.fromkeys(before, 0)
+
+
+def test_moving_one_actor_rereads_and_tests_that_actor_only():
+    pl, _ = crowd()
+    snapshot = pl.shadows._renderers[0].snapshot
+    moved = next(s.actor for s in snapshot.casters if s.actor is not snapshot.receivers[0].actor)
+    before = counters(pl)
+    moved.AddPosition(0.01, 0.0, 0.0)
+    draw(pl)
+    counted = change(before, counters(pl))
+    assert counted["reread"] == 1
+    assert counted["cone tests"] == 1
+    assert counted["edits"] == 1
+    assert pl.shadows._renderers[0].snapshot.changed == {moved.__this__}
+
+
+def test_moving_the_light_tests_every_actor_once_and_runs_its_pass():
+    pl, light = crowd()
+    actors = len(pl.shadows._renderers[0].snapshot.actors)
+    before = counters(pl)
+    light.position = (0.01, 0.0, 20.0)
+    draw(pl)
+    counted = change(before, counters(pl))
+    assert counted["reread"] == 0
+    assert counted["cone tests"] == actors
+    assert pl.shadows.last_frame.passes_run == 1
+
+
+def test_changed_property_rereads_that_actor():
+    pl = pv.Plotter(off_screen=True, window_size=(200, 150), lighting="none")
+    ground = pl.add_mesh(pv.Plane(i_size=10, j_size=10))
+    box = pl.add_mesh(pv.Cube(center=(0, 0, 1)))
+    pl.add_light(pv.Light(position=(0, 0, 4), positional=True, cone_angle=180))
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    before = counters(pl)
+    box.prop.lighting = False  # it stops receiving: the reader must notice through its property
+    draw(pl)
+    snapshot = pl.shadows._renderers[0].snapshot
+    assert change(before, counters(pl))["reread"] == 1
+    assert [s.actor for s in snapshot.receivers] == [ground]
+    assert snapshot.bystanders == [box]
