@@ -17,6 +17,7 @@ from pathlib import Path
 import vtk
 
 from pvshadows.gl.actor_buffers import ActorBuffers
+from pvshadows.gl.buffers import forget_pointer_records
 from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan, plan_frame
 from pvshadows.report import FrameFailure, FrameReport, LightReport
@@ -262,6 +263,7 @@ class RendererShadows:
                 technique.release()
             self._buffers.release()
             self._timer.release()
+            forget_pointer_records()
         self._techniques.clear()
         self._window = None
 
