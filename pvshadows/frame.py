@@ -16,6 +16,7 @@ from pathlib import Path
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
+from pvshadows.gl.buffers import forget_pointer_records
 from pvshadows.gl.texture_units import park_active_unit
 from pvshadows.gl.timing import PassTimer
 from pvshadows.planner import LightPlan, plan_frame
@@ -245,6 +246,7 @@ class RendererShadows:
                 technique.release()
             self._buffers.release()
             self._timer.release()
+            forget_pointer_records()
         self._techniques.clear()
         self._window = None
 

@@ -146,3 +146,17 @@ class EmptyArray:
         if self._array:
             self._gl.glDeleteVertexArrays(1, [self._array])
             self._array = 0
+
+
+def forget_pointer_records() -> None:
+    """Drop what PyOpenGL keeps for the current context's ``glVertexAttribPointer`` calls.
+
+    PyOpenGL holds every pointer given to ``glVertexAttribPointer`` per
+    context, for as long as the process lives. Ours are offsets into
+    buffer objects, not client memory, so once the vertex arrays are
+    deleted nothing needs them; keeping them would grow memory with every
+    plotter closed.
+    """
+    from OpenGL import contextdata
+
+    contextdata.cleanupContext(contextdata.getContext())
