@@ -152,7 +152,7 @@ class ShadowsComponent:
         chosen = None
         if lights is not None:
             chosen = {vtk_id(self._check_light(light, "lights")) for light in _light_list(lights)}
-        self._check_scene(warn_translucent=defaults.technique != "planar")
+        self._check_scene(warn_translucent=defaults.technique not in ("planar", "volume"))
         self._warn_unserved(defaults, chosen)
         self._check_volumes(defaults)
         if self._plotter.render_window is not None:
@@ -267,10 +267,12 @@ class ShadowsComponent:
         :meth:`reference` is physical about a caster's opacity: each of its
         surfaces a shadow ray crosses lets ``1 - opacity`` of the light
         through (a closed body twice, as VTK's blending draws both its
-        sides). ``technique="planar"`` does the same; the other techniques
-        draw an actor at ``opacity=0.3`` as the same full shadow as an
-        opaque one, :meth:`enable` warns about it, and :meth:`measure` shows
-        what it costs. Opt such an actor out with ``cast=False`` to let
+        sides). ``technique="planar"`` does the same, and so does
+        ``"volume"`` (exactly for convex bodies; a ray through several parts
+        of one translucent caster gets what one part lets through). The map
+        techniques draw an actor at ``opacity=0.3`` as the same full shadow
+        as an opaque one, :meth:`enable` warns about it, and :meth:`measure`
+        shows what it costs. Opt such an actor out with ``cast=False`` to let
         all the light through, or lower the light's ``strength``
         (:meth:`configure`) to lighten all its shadows.
 
@@ -630,8 +632,8 @@ class ShadowsComponent:
         if opacity < 1.0 and self._reader.casting.get(vtk_id(actor), True):
             msg = (
                 f"{self._actor_name(actor)} has opacity {opacity:g} but casts a full shadow: "
-                "only technique='planar' lets 1 - opacity through each of its surfaces, as "
-                "reference() does (measure() shows the difference); "
+                "only technique='planar' or 'volume' lets 1 - opacity through each of its "
+                "surfaces, as reference() does (measure() shows the difference); "
                 "pl.shadows.set_caster(actor, False) lets all the light through it"
             )
             warnings.warn(msg, UserWarning, stacklevel=4)

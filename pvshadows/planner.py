@@ -162,6 +162,9 @@ def plan_frame(
                 "the light is off or has zero intensity: it casts nothing and costs nothing"
             )
             continue
+        if plan.settings.strength == 0.0:
+            plan.notes.append("strength=0: its shadows would remove nothing, so none is drawn")
+            continue
         if light.LightTypeIsHeadlight():
             plan.notes.append(
                 "a headlight's shadows hide behind the objects that cast them: none drawn"

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
-from pvshadows import _vtk as vtk
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import vtk
 
 
 def transmittance(actor: vtk.vtkActor) -> float:

@@ -26,6 +26,9 @@ def test_strength_scales_the_removed_light_and_visibility_stays_geometric(techni
     vis_half = pl.shadows.visibility(spot)
     pl.shadows.configure(spot, strength=0.0)
     none = draw(pl).astype(int)
+    (report,) = pl.shadows.last_frame.lights
+    assert report.technique is None and report.passes_run == 0
+    assert "strength=0" in " ".join(report.notes)
 
     np.testing.assert_array_equal(vis_half, vis_full)
     dark = _erode(np.isfinite(vis_full) & (vis_full == 0.0))

@@ -34,45 +34,48 @@ def test_opacity_of_a_scene_mesh_is_checked():
 
 
 @pytest.mark.parametrize(("opacity", "through"), [(0.3, 0.49), (0.2, 0.64)])
-def test_a_translucent_caster_casts_a_full_shadow_that_measure_judges(opacity, through):
+def test_a_translucent_caster_casts_a_full_shadow_from_maps_that_measure_judges(opacity, through):
     pl, spot = spot_box_scene()
     pl.actors["box"].prop.opacity = opacity
     pl.shadows.set_receiver(pl.actors["box"], False)  # only the ground's pixels
     with pytest.warns(UserWarning, match=f"actor 'box' has opacity {opacity} but casts a full"):
-        pl.shadows.enable(technique="volume")
+        pl.shadows.enable(technique="map", filter="hard")
     shown = pl.shadows.visibility(spot)
     exact = pl.shadows.reference(spot)
     shadow = np.isfinite(shown) & (shown == 0.0) & (exact < 1.0)
     assert shadow.sum() > 1000
-    np.testing.assert_allclose(exact[shadow], through, atol=1e-6)  # the box's two sides
+    inner = np.abs(exact[shadow] - through) < 1e-6  # the box's two sides
+    assert inner.mean() > 0.98
     error = pl.shadows.measure(spot)
     assert error.shadow_pixels >= shadow.sum()
     share = shadow.sum() / error.lit_pixels
     assert error.rmse == pytest.approx(through * np.sqrt(share), rel=0.05)
     if through > 0.5:  # shown dark, lit in truth
-        assert error.false_shadow == pytest.approx(shadow.sum() / error.lit_pixels, rel=0.05)
+        assert error.false_shadow == pytest.approx(share, rel=0.05)
     pl.shadows.set_caster(pl.actors["box"], False)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        pl.shadows.enable(technique="volume")
+        pl.shadows.enable(technique="map", filter="hard")
     assert pl.shadows.measure(spot).shadow_pixels == 0
 
 
-@pytest.mark.parametrize("opacity", [0.3, 0.6])
-def test_planar_shadows_let_the_casters_transmittance_through_like_the_reference(opacity):
+@pytest.mark.parametrize(
+    ("technique", "opacity"), [("planar", 0.3), ("planar", 0.6), ("volume", 0.3)]
+)
+def test_planar_and_volume_shadows_let_the_casters_transmittance_through(technique, opacity):
     pl, spot = spot_box_scene()
     pl.actors["box"].prop.opacity = opacity
     pl.shadows.set_receiver(pl.actors["box"], False)
     with warnings.catch_warnings():
-        warnings.simplefilter("error")  # planar shadows honour opacity: no warning
-        pl.shadows.enable(technique="planar")
+        warnings.simplefilter("error")  # they honour opacity: no warning
+        pl.shadows.enable(technique=technique)
     shown = pl.shadows.visibility(spot)
     exact = pl.shadows.reference(spot)
     through = (1.0 - opacity) ** 2  # the box's top and bottom
     shadow = np.isfinite(shown) & (np.abs(exact - through) < 1e-6)
     assert shadow.sum() > 1000
     inner = shadow & (np.abs(shown - through) < 0.01)
-    assert inner.sum() > 0.98 * shadow.sum()  # 8-bit mask: within 0.01 but at the outline
+    assert inner.sum() > 0.98 * shadow.sum()  # 8-bit masks: within 0.01 but at the outline
     error = pl.shadows.measure(spot)
     assert error.rmse < 0.02 and error.misclassified < 0.002
     pl.actors["box"].prop.opacity = 1.0

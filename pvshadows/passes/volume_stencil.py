@@ -218,6 +218,7 @@ class VolumePasses:
         mask: MaskTexture,
         batches: list[list[VolumeDraw]],
         zmode: str,
+        passing: list[float] | None = None,
     ) -> None:
         """Count the volumes in the stencil, batch by batch, and leave the mask.
 
@@ -231,27 +232,35 @@ class VolumePasses:
             Volumes counted together (at most 255 bodies per batch).
         zmode : {"zpass", "zfail"}
             Counting in front of the surface or behind it.
+        passing : list of float, optional
+            Per batch, the share of light its shadow lets through (the mask is
+            multiplied by it where the batch's count is not zero); all 0
+            (opaque) by default.
         """
+        passing = [0.0] * len(batches) if passing is None else passing
         with self._state() as (gl, state):
             target.bind(mask)
             state.vtkglColorMask(True, True, True, True)
             state.vtkglClearColor(1.0, 1.0, 1.0, 1.0)
             state.vtkglClear(gl.GL_COLOR_BUFFER_BIT)
             state.vtkglEnable(gl.GL_STENCIL_TEST)
-            for batch in batches:
+            for batch, through in zip(batches, passing, strict=True):
                 state.vtkglStencilMask(0xFF)
                 gl.glClearStencil(0)
                 state.vtkglClear(gl.GL_STENCIL_BUFFER_BIT)
                 self._count_batch(gl, state, batch, zmode)
-                # Mask: 0 wherever the batch left a non-zero count.
+                # Mask: times what the batch lets through (0 when opaque) where it counted.
                 gl.glDisable(gl.GL_DEPTH_CLAMP)
                 state.vtkglDisable(gl.GL_DEPTH_TEST)
                 state.vtkglColorMask(True, True, True, True)
                 state.vtkglStencilFunc(gl.GL_NOTEQUAL, 0, 0xFF)
                 state.vtkglStencilOp(gl.GL_KEEP, gl.GL_KEEP, gl.GL_KEEP)
+                state.vtkglEnable(gl.GL_BLEND)
+                state.vtkglBlendFunc(gl.GL_ZERO, gl.GL_SRC_COLOR)
                 program = self._bind("fullscreen")
-                program.SetUniform4f("colour", [0.0, 0.0, 0.0, 0.0])
+                program.SetUniform4f("colour", [float(through)] * 4)
                 self._empty_array().draw_triangle()
+                state.vtkglDisable(gl.GL_BLEND)
 
     def _count_batch(self, gl, state, batch: list[VolumeDraw], zmode: str) -> None:
         state.vtkglEnable(gl.GL_DEPTH_TEST)

@@ -56,6 +56,7 @@ from pvshadows.shading import LightShading
 from pvshadows.silhouette import volume_geometry
 from pvshadows.snapshot import ActorState, Snapshot
 from pvshadows.techniques.base import FrameContext
+from pvshadows.translucency import transmittance
 from pvshadows.volume_casters import VolumeMesh, batches, prepare_volume_mesh, winding_number
 from pvshadows.volume_zmode import choose_zmode
 
@@ -147,6 +148,49 @@ def require_closed(casters: list[tuple[str, ActorTriangles]]) -> None:
                 "map), or pl.shadows.set_caster(actor, False)"
             )
             raise OpenMeshError(msg) from None
+
+
+def translucent_batches(
+    closed: list[tuple[ActorState, VolumeMesh]],
+) -> tuple[list[list[tuple]], list[float]]:
+    """Batch the closed casters: opaque ones together, each translucent one on its own.
+
+    Parameters
+    ----------
+    closed : list of tuple
+        ``(caster, volume mesh)`` in drawing order.
+
+    Returns
+    -------
+    batches : list of list of tuple
+        As :func:`pvshadows.volume_casters.batches`: opaque casters first.
+    passing : list of float
+        Per batch, the light its shadow lets through: 0 for opaque casters,
+        ``(1 - opacity)`` squared for a translucent closed caster (a shadow
+        ray crosses two of its surfaces), ``1 - opacity`` for a flat sheet.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> import pyvista as pv
+    >>> from pvshadows.techniques.volume import translucent_batches
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> glass = SimpleNamespace(actor=pl.add_mesh(pv.Sphere(), opacity=0.5))
+    >>> stone = SimpleNamespace(actor=pl.add_mesh(pv.Cube()))
+    >>> body = SimpleNamespace(n_bodies=1, how="closed")
+    >>> translucent_batches([(glass, body), (stone, body)])
+    ([[(1, 0, 1)], [(0, 0, 1)]], [0.0, 0.25])
+    """
+    through = [transmittance(caster.actor) for caster, _ in closed]
+    counts = [mesh.n_bodies for _, mesh in closed]
+    result = batches([c if t == 0.0 else 0 for c, t in zip(counts, through, strict=True)])
+    passing = [0.0] * len(result)
+    for number, (t, (_, mesh)) in enumerate(zip(through, closed, strict=True)):
+        if t > 0.0:
+            own = batches([0] * number + [counts[number]])
+            result += own
+            passing += [t if mesh.how == "two-sided sheet" else t * t] * len(own)
+    return result, passing
 
 
 def combine_shadings(first: LightShading, second: LightShading) -> LightShading:
@@ -316,7 +360,7 @@ class VolumeTechnique:
             camera.tobytes(),
             (width, height),
             tuple(c.key() for c in context.snapshot.actors),
-            tuple(c.key() for c, _ in closed),
+            tuple((*c.key(), transmittance(c.actor)) for c, _ in closed),
         )
         if key == state.key:
             reports.append(
@@ -330,7 +374,7 @@ class VolumeTechnique:
             return reports + self._fallback_update(state, context)
         if self._depth_frame != context.frame:
             reports.append(self._depth_pass(context, camera, width, height))
-        plan_batches = batches([mesh.n_bodies for _, mesh in closed])
+        plan_batches, passing = translucent_batches(closed)
         reach = _finite_reach(context, light)
         if reach:
             plan.notes.append("parallel projection: volumes end beyond the scene, not at infinity")
@@ -347,7 +391,7 @@ class VolumeTechnique:
             else "no closed caster: mask all lit",
         )
         with context.timer.measure(record):
-            self._passes.count(self._target, state.mask, draws, zmode)
+            self._passes.count(self._target, state.mask, draws, zmode, passing)
         reports.append(record)
         state.key, state.frame, state.zmode = key, context.frame, zmode
         state.draws = [draw for batch in draws for draw in batch]
