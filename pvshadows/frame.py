@@ -17,6 +17,7 @@ import vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.texture_units import park_active_unit
 from pvshadows.gl.timing import PassTimer
+from pvshadows.impostors import LIGHT_SPACE_TECHNIQUES, lit_without_triangles
 from pvshadows.planner import LightPlan, plan_frame
 from pvshadows.report import FrameReport, LightReport
 from pvshadows.scene import vtk_id
@@ -129,6 +130,7 @@ class RendererShadows:
         report = FrameReport()
         uniforms: dict[str, object] = {PROBE_UNIFORM: self.probe_index}
         shadings = []
+        light_space = []
         self._active = []
         for plan in plans:
             light_report = LightReport(
@@ -140,17 +142,45 @@ class RendererShadows:
             technique = self.technique(plan.technique)
             light_report.passes = technique.update(plan, context)
             shadings.append(technique.shading(plan))
+            if plan.technique in LIGHT_SPACE_TECHNIQUES:
+                light_space.append(shadings[-1])
             uniforms.update(technique.activate(plan, context))
             if technique not in self._active:
                 self._active.append(technique)
+        self._note_impostors(plans, snapshot)
         park_active_unit(self._window)
         for technique in self._techniques.values():
             technique.keep_only(plans)
         self._buffers.keep_only(snapshot.actors)
-        self._apply_edits(snapshot, shadings, uniforms)
+        self._apply_edits(snapshot, shadings, uniforms, light_space)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
 
-    def _apply_edits(self, snapshot: Snapshot, shadings: list, uniforms: dict) -> None:
+    def _note_impostors(self, plans: list[LightPlan], snapshot: Snapshot) -> None:
+        """Say under each shadowed light what the actors without triangles do."""
+        names = [
+            self._reader.name_of(actor)
+            for actor in snapshot.bystanders
+            if self._reader.receiving.get(vtk_id(actor), True) and lit_without_triangles(actor)
+        ]
+        if not names:
+            return
+        listed = ", ".join(names)
+        for plan in plans:
+            if plan.technique is None:
+                continue
+            if plan.technique in LIGHT_SPACE_TECHNIQUES:
+                plan.notes.append(
+                    f"points or lines without triangles receive, cast nothing: {listed}"
+                )
+            else:
+                plan.notes.append(
+                    f"points or lines without triangles stay lit by this {plan.technique} light "
+                    f"(its mask covers triangles only) and cast nothing: {listed}"
+                )
+
+    def _apply_edits(
+        self, snapshot: Snapshot, shadings: list, uniforms: dict, light_space: list
+    ) -> None:
         touched = set()
         for state in snapshot.receivers:
             edits = self._edits_of(state.actor)
@@ -160,6 +190,17 @@ class RendererShadows:
             touched.add(vtk_id(state.actor))
         for actor in snapshot.bystanders:
             edits = self._edits_of(actor)
+            key = vtk_id(actor)
+            if (
+                light_space
+                and self._reader.receiving.get(key, True)
+                and lit_without_triangles(actor)
+            ):
+                shading = [s.for_actor(key) for s in light_space]
+                edits.apply(receiver_replacements(actor, shading, triangles=False))
+                edits.set_uniforms(uniforms)
+                touched.add(key)
+                continue
             edits.apply(bystander_replacements())
             edits.set_uniforms({PROBE_UNIFORM: self.probe_index})
             touched.add(vtk_id(actor))

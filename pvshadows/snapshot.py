@@ -103,6 +103,10 @@ class SceneReader:
         self.planes: set[str] = set()
         self.problems: dict[str, str] = {}
 
+    def name_of(self, actor: vtk.vtkActor) -> str:
+        """Return how messages name an actor, e.g. ``"actor 'ground'"``."""
+        return self._names(actor)
+
     def triangles_of(self, actor: vtk.vtkActor) -> ActorTriangles | None:
         """Return the actor's triangles, re-reading them only when its data changed.
 
