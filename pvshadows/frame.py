@@ -19,10 +19,12 @@ from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.buffers import forget_pointer_records
 from pvshadows.gl.texture_units import park_active_unit
 from pvshadows.gl.timing import PassTimer
+from pvshadows.impostors import LIGHT_SPACE_TECHNIQUES, lit_without_triangles
 from pvshadows.planner import LightPlan, plan_frame
 from pvshadows.reach import ReachCache
 from pvshadows.receivers import ReceiverEdits
 from pvshadows.report import FrameFailure, FrameReport, LightReport
+from pvshadows.scene import vtk_id
 from pvshadows.settings import ShadowSettings
 from pvshadows.shading import PROBE_UNIFORM, strength_uniform
 from pvshadows.snapshot import SceneReader, Snapshot
@@ -136,6 +138,8 @@ class RendererShadows:
         report = self._building
         uniforms: dict[str, object] = {PROBE_UNIFORM: self.probe_index}
         shadings = []
+        light_space = []
+        light_space = []
         self._active = []
         for plan in plans:
             light_report = LightReport(
@@ -149,9 +153,12 @@ class RendererShadows:
             light_report.passes = technique.update(plan, context)
             shadings.append(technique.shading(plan))
             uniforms[strength_uniform(plan.vtk_index)] = plan.settings.strength
+            if plan.technique in LIGHT_SPACE_TECHNIQUES:
+                light_space.append(shadings[-1])
             if technique not in self._active:
                 self._active.append(technique)
             uniforms.update(technique.activate(plan, context))
+        self._note_impostors(plans, snapshot)
         self._where = "keeping only this frame's maps"
         park_active_unit(self._window)
         for technique in self._techniques.values():
@@ -159,8 +166,31 @@ class RendererShadows:
         if snapshot is not self.snapshot:
             self._buffers.keep_only(snapshot.actors)
         self._where = "receiver shader edits"
-        self._apply_edits(snapshot, shadings, uniforms)
+        self._apply_edits(snapshot, shadings, uniforms, light_space)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
+
+    def _note_impostors(self, plans: list[LightPlan], snapshot: Snapshot) -> None:
+        """Say under each shadowed light what the actors without triangles do."""
+        names = [
+            self._reader.name_of(actor)
+            for actor in snapshot.bystanders
+            if self._reader.receiving.get(vtk_id(actor), True) and lit_without_triangles(actor)
+        ]
+        if not names:
+            return
+        listed = ", ".join(names)
+        for plan in plans:
+            if plan.technique is None:
+                continue
+            if plan.technique in LIGHT_SPACE_TECHNIQUES:
+                plan.notes.append(
+                    f"points or lines without triangles receive, cast nothing: {listed}"
+                )
+            else:
+                plan.notes.append(
+                    f"points or lines without triangles stay lit by this {plan.technique} light "
+                    f"(its mask covers triangles only) and cast nothing: {listed}"
+                )
 
     def _fail(self, error: Exception) -> None:
         """Draw this frame unshadowed: undo every edit, drop every map, say so once per fault.
@@ -187,10 +217,6 @@ class RendererShadows:
         """Leave receivers' shaders as VTK built them and release the maps; return what failed."""
         troubles = []
         steps = [(f"deactivating {type(t).__name__}", t.deactivate) for t in self._active]
-        steps += [
-            (f"removing the edits of {edits.actor.GetClassName()}", edits.remove)
-            for edits in self._edits.values()
-        ]
         steps += [(f"releasing {type(t).__name__}", t.release) for t in self._techniques.values()]
         if self._timer is not None:
             steps.append(("collecting GPU times", self._timer.collect))
@@ -199,14 +225,23 @@ class RendererShadows:
                 step()
             except Exception as error:
                 troubles.append(f"{what}: {type(error).__name__}: {error}")
-        self._edits.clear()
+        troubles += self._edits.clear()
         self._active = []
         self._techniques = {}
         self._context = None
         return troubles
 
-    def _apply_edits(self, snapshot: Snapshot, shadings: list, uniforms: dict) -> None:
-        self._edits.update(snapshot, shadings, uniforms)
+    def _apply_edits(
+        self, snapshot: Snapshot, shadings: list, uniforms: dict, light_space: list
+    ) -> None:
+        lit_points = {
+            vtk_id(actor)
+            for actor in snapshot.bystanders
+            if light_space
+            and self._reader.receiving.get(vtk_id(actor), True)
+            and lit_without_triangles(actor)
+        }
+        self._edits.update(snapshot, shadings, uniforms, light_space, lit_points)
 
     def _on_end(self, renderer: vtk.vtkRenderer, event: str) -> None:
         if self.error is not None:

@@ -25,6 +25,9 @@ from pvshadows.shading import (
 )
 from pvshadows.snapshot import ActorState, Snapshot
 
+#: The state kept for a bystander that receives as points or lines (no triangles).
+_LIT_POINTS = "lit points"
+
 
 def _same(a: object, b: object) -> bool:
     if a is b:
@@ -73,7 +76,7 @@ class ReceiverEdits:
     def __init__(self) -> None:
         self._edits: dict[str, ShaderEdits] = {}
         self._uniforms: dict[str, vtk.vtkUniforms] = {}
-        self._states: dict[str, ActorState | None] = {}
+        self._states: dict[str, ActorState | str | None] = {}
         self._replacements: dict[tuple, list[tuple[str, str]]] = {}
         self._bystander = bystander_replacements()
         self._snapshot: Snapshot | None = None
@@ -87,7 +90,12 @@ class ReceiverEdits:
         self.edited = 0
 
     def update(
-        self, snapshot: Snapshot, shadings: list[LightShading], uniforms: dict[str, object]
+        self,
+        snapshot: Snapshot,
+        shadings: list[LightShading],
+        uniforms: dict[str, object],
+        light_space: list[LightShading] | None = None,
+        lit_points: set[str] | None = None,
     ) -> None:
         """Bring every actor's edits and uniforms to this frame's.
 
@@ -100,7 +108,15 @@ class ReceiverEdits:
         uniforms : dict
             Uniform values every receiver gets (including the probe switch,
             which bystanders get too).
+        light_space : list of LightShading, optional
+            The shadings of lights whose lookups work at any fragment
+            (shadow maps): points and lines without triangles read these.
+        lit_points : set of str, optional
+            Keys of the bystanders VTK lights without triangles (points as
+            spheres, lines as tubes): they receive ``light_space``.
         """
+        light_space = light_space or []
+        lit_points = lit_points or set()
         same_lights = shadings == self._shadings
         if self._values.keys() == uniforms.keys():
             changed = {n: v for n, v in uniforms.items() if not _same(self._values[n], v)}
@@ -133,6 +149,16 @@ class ReceiverEdits:
         for actor in snapshot.bystanders:
             key = actor.__this__
             touched.add(key)
+            if key in lit_points:
+                known = self._states.get(key) == _LIT_POINTS
+                if not (known and same_lights):
+                    lights = [s.for_actor(key) for s in light_space]
+                    replacements = receiver_replacements(actor, lights, triangles=False)
+                    self._edits_of(actor, key).apply(replacements)
+                    self.edited += 1
+                self._send(actor, key, known and changed is not None, setters, uniforms)
+                self._states[key] = _LIT_POINTS
+                continue
             known = key in self._states and self._states[key] is None
             if not known:
                 self._edits_of(actor, key).apply(self._bystander)
@@ -143,7 +169,10 @@ class ReceiverEdits:
             self._forget(key)
         self._snapshot, self._shadings = snapshot, list(shadings)
         self._receiving = [self._uniforms[s.key()[0]] for s in snapshot.receivers]
-        self._standing = [self._uniforms[a.__this__] for a in snapshot.bystanders]
+        self._receiving += [self._uniforms[key] for key in lit_points]
+        self._standing = [
+            self._uniforms[a.__this__] for a in snapshot.bystanders if a.__this__ not in lit_points
+        ]
 
     def _send(
         self, actor: vtk.vtkActor, key: str, only_changed: bool, setters: list, values: dict
@@ -177,10 +206,26 @@ class ReceiverEdits:
         self._uniforms.pop(key, None)
         self._states.pop(key, None)
 
-    def clear(self) -> None:
-        """Take every edit and uniform off every actor."""
+    def clear(self) -> list[str]:
+        """Take every edit and uniform off every actor; return what could not be taken off.
+
+        Every actor is tried, even after one fails, so a fault leaves as few
+        edited shaders behind as it can.
+        """
+        troubles = []
         for key in list(self._edits):
-            self._forget(key)
+            edits = self._edits[key]
+            try:
+                self._forget(key)
+            except Exception as error:
+                troubles.append(
+                    f"removing the edits of {edits.actor.GetClassName()}: "
+                    f"{type(error).__name__}: {error}"
+                )
+            self._edits.pop(key, None)
+            self._uniforms.pop(key, None)
+            self._states.pop(key, None)
         self._snapshot, self._shadings, self._values = None, [], {}
         self._receiving, self._standing = [], []
         self._replacements.clear()
+        return troubles

@@ -135,12 +135,7 @@ def _uses_pbr(actor: vtk.vtkActor) -> bool:
     return actor.GetProperty().GetInterpolation() == vtk.VTK_PBR
 
 
-def _draws_lines_or_points(actor: vtk.vtkActor) -> bool:
-    """Return whether the actor's surface is drawn as lines or points (no facet for a normal)."""
-    return actor.GetProperty().GetRepresentation() != vtk.VTK_SURFACE
-
-
-def _normal_expression(actor: vtk.vtkActor) -> str:
+def _normal_expression(actor: vtk.vtkActor, triangles: bool) -> str:
     """Return the GLSL normal that a receiver's lookups offset along and test facing with.
 
     A triangle's own facet normal (screen-space derivatives); for lines and
@@ -148,7 +143,7 @@ def _normal_expression(actor: vtk.vtkActor) -> str:
     lights them with (the mesh's normals, or VTK's line normal facing the
     camera), so a line is shadowed exactly where VTK lights it.
     """
-    if _draws_lines_or_points(actor):
+    if not triangles or actor.GetProperty().GetRepresentation() != vtk.VTK_SURFACE:
         return "normalize(normalVCVSOutput)"
     return "pvsGeometricNormal(pvsFacetVC, normalVCVSOutput)"
 
@@ -181,7 +176,7 @@ def _light_hooks(light: LightShading, pbr: bool, normal: str) -> list[tuple[str,
 
 
 def receiver_replacements(
-    actor: vtk.vtkActor, lights: Iterable[LightShading]
+    actor: vtk.vtkActor, lights: Iterable[LightShading], *, triangles: bool = True
 ) -> list[tuple[str, str]]:
     """Return the fragment-shader edits that shadow ``lights`` on ``actor``.
 
@@ -191,6 +186,11 @@ def receiver_replacements(
         A receiver; its property decides between Phong and PBR hooks.
     lights : iterable of LightShading
         The shadowed lights.
+    triangles : bool, default: True
+        ``False`` for an actor drawn without triangles (points, lines,
+        spheres, tubes): its lookups use the normal VTK lights it with, and
+        it shows "no surface" in probe frames, since the ray-cast reference
+        cannot see it.
 
     Returns
     -------
@@ -219,10 +219,12 @@ def receiver_replacements(
         (_VIEW_POSITION, _VIEW_POSITION + _FACET_NORMAL),
         (
             _PROBE_ANCHOR,
-            _probe_output("vec4(pvsProbe, 1.0, 0.0, 1.0)"),
+            _probe_output(
+                "vec4(pvsProbe, 1.0, 0.0, 1.0)" if triangles else "vec4(0.0, 0.0, 0.0, 1.0)"
+            ),
         ),
     ]
-    normal = _normal_expression(actor)
+    normal = _normal_expression(actor, triangles)
     for light in lights:
         edits.extend(_light_hooks(light, pbr, normal))
         edits.extend(

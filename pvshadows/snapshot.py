@@ -132,6 +132,10 @@ class SceneReader:
         #: How many actors were read again (stamp changed) since the reader was made.
         self.reread = 0
 
+    def name_of(self, actor: vtk.vtkActor) -> str:
+        """Return how messages name an actor, e.g. ``"actor 'ground'"``."""
+        return self._names(actor)
+
     def triangles_of(self, actor: vtk.vtkActor) -> ActorTriangles | None:
         """Return the actor's triangles, re-reading them only when its data changed.
 

@@ -246,3 +246,59 @@ def test_visibility_refuses_a_scale_that_is_not_an_int(scene, scale):
     scene.plotter.shadows.enable()
     with pytest.raises(TypeError, match="scale must be an int"):
         scene.plotter.shadows.visibility(scene.light, scale=scale)
+
+
+def _grid_on_ground(spacing=0.8, height=0.12):
+    xs = np.arange(-4.0, 4.01, spacing)
+    return np.array([[x, y, height] for x in xs for y in xs])
+
+
+def _pixels_of(pl, points):
+    """Pixel (row from the top, column) of each world point."""
+    renderer = pl.renderer
+    height = renderer.GetSize()[1]
+    out = []
+    for point in points:
+        renderer.SetWorldPoint(*point, 1.0)
+        renderer.WorldToDisplay()
+        x, y, _ = renderer.GetDisplayPoint()
+        out.append((height - 1 - round(y), round(x)))
+    return np.array(out)
+
+
+@pytest.mark.parametrize("style", ["spheres", "tubes"])
+def test_point_clouds_and_tubes_receive_from_a_cube_map_and_cast_nothing(style):
+    scene = standard_scene(window_size=WINDOW)
+    pl = scene.plotter
+    points = _grid_on_ground()
+    if style == "spheres":
+        cloud = pl.add_points(points, render_points_as_spheres=True, point_size=9, name="cloud")
+    else:
+        rows = round(np.sqrt(len(points)))
+        cells = np.hstack([[rows, *range(r * rows, (r + 1) * rows)] for r in range(rows)])
+        cloud = pl.add_mesh(
+            pv.PolyData(points, lines=cells), render_lines_as_tubes=True, line_width=7, name="cloud"
+        )
+    pl.shadows.enable(technique="cubemap")
+    draw(pl)
+    exact = pl.shadows.reference(scene.light)  # the ground and objects: the cloud casts nothing
+    pl.shadows.set_caster(cloud, False)
+    assert np.array_equal(pl.shadows.reference(scene.light), exact, equal_nan=True)
+    shadowed = draw(pl).astype(np.float64).mean(axis=-1)
+    notes = [note for note in pl.shadows.last_frame.lights[0].notes if "without triangles" in note]
+    assert notes == ["points or lines without triangles receive, cast nothing: actor 'cloud'"]
+    pl.shadows.disable()
+    plain = draw(pl).astype(np.float64).mean(axis=-1)
+    agree = judged = dark = 0
+    for row, col in _pixels_of(pl, points):
+        if not (2 <= row < WINDOW[1] - 2 and 2 <= col < WINDOW[0] - 2):
+            continue
+        around = exact[row - 2 : row + 3, col - 2 : col + 3] < 0.5
+        if plain[row, col] < 90 or around.min() != around.max():
+            continue  # not lit enough by the light to tell, or at a shadow's edge
+        judged += 1
+        dark += int(around[0, 0])
+        agree += (shadowed[row, col] < 0.7 * plain[row, col]) == around[0, 0]
+    assert judged >= 20
+    assert dark >= 3
+    assert agree == judged
