@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import vtk
 
-from pvshadows.fitting import SunFit, spot_fit, sun_fit, sun_rotation
+from pvshadows.fitting import SunFit, spot_fit, spot_shadowing_casters, sun_fit, sun_rotation
 from pvshadows.gl.textures import DepthMap
 from pvshadows.lights import LightKind
 from pvshadows.passes.map_depth import MapCaster, MapDepthPass
@@ -103,7 +103,10 @@ class MapTechnique(PerLightMaps):
         pose, settings = plan.pose, plan.settings
         inside = plan.casters
         nearest, far = distance_range(pose.position, inside or context.snapshot.casters)
-        fit = spot_fit(pose, settings.resolution, far * 1e-4, far)
+        receivers = [a for a in context.snapshot.actors if a.receiver]
+        shadowing = spot_shadowing_casters(pose, inside, receivers)
+        boxes = np.array([c.bounds for c in shadowing]).reshape(-1, 2, 3)
+        fit = spot_fit(pose, settings.resolution, far * 1e-4, far, boxes)
         state.world_to_light = translation(-pose.position)
         state.light_to_clip = fit.light_to_clip
         state.params = (far, fit.texel, settings.light_size, nearest)
@@ -111,7 +114,13 @@ class MapTechnique(PerLightMaps):
         if not inside:
             state.key = None
             return [PassReport("map depth", "skipped", "no caster inside the spot's cone")]
-        key = (pose.key(), settings.resolution, settings.cull_front, tuple(c.key() for c in inside))
+        key = (
+            pose.key(),
+            settings.resolution,
+            settings.cull_front,
+            fit.texel,
+            tuple(c.key() for c in inside),
+        )
         detail = f"{len(inside)} of {len(context.snapshot.casters)} casters inside the cone"
         return self._render(
             state, key, inside, context, far, along_z=False, detail=detail, settings=settings
