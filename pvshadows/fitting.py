@@ -47,8 +47,14 @@ def _up_for(direction: np.ndarray) -> np.ndarray:
     return np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < 0.99 else np.array([0.0, 1.0, 0.0])
 
 
-def spot_fit(pose: LightPose, resolution: int, near: float, far: float) -> SpotFit:
-    """Return the perspective map holding a spot light's cone.
+def spot_fit(
+    pose: LightPose,
+    resolution: int,
+    near: float,
+    far: float,
+    boxes: np.ndarray | None = None,
+) -> SpotFit:
+    """Return the perspective map holding a spot light's cone, or the casters in it.
 
     Parameters
     ----------
@@ -58,6 +64,10 @@ def spot_fit(pose: LightPose, resolution: int, near: float, far: float) -> SpotF
         Texels per side.
     near, far : float
         Clip distances (depth clamp makes them matter only for precision).
+    boxes : numpy.ndarray, optional
+        ``(n, 2, 3)`` world bounds of the casters that can shadow a receiver:
+        when they all lie in front of the light, the map holds only them
+        (its texels are then finer than the cone's), else the whole cone.
 
     Returns
     -------
@@ -74,11 +84,58 @@ def spot_fit(pose: LightPose, resolution: int, near: float, far: float) -> SpotF
     >>> round(fit.texel, 4)
     0.002
     """
-    half = np.tan(np.radians(min(pose.cone_angle, 89.0))) * (1.0 + 2.0 * MARGIN_TEXELS / resolution)
     rotation = look_rotation(pose.direction, _up_for(pose.direction))
+    half = _spot_half_width(pose, rotation, boxes) * (1.0 + 2.0 * MARGIN_TEXELS / resolution)
     fov = 2.0 * np.degrees(np.arctan(half))
     projection = perspective(fov, 1.0, near, far) @ rotation
     return SpotFit(rotation, projection, float(2.0 * half / resolution))
+
+
+def _box_corners(boxes: np.ndarray) -> np.ndarray:
+    return np.stack(
+        [boxes[:, [i, j, k], [0, 1, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)], axis=1
+    ).reshape(-1, 3)
+
+
+def _spot_half_width(pose: LightPose, rotation: np.ndarray, boxes: np.ndarray | None) -> float:
+    """Tangent of the half angle the map must hold: the cone's, or less for casters in front."""
+    cone = float(np.tan(np.radians(min(pose.cone_angle, 89.0))))
+    if boxes is None or len(boxes) == 0:
+        return cone
+    local = (_box_corners(np.asarray(boxes, dtype=np.float64)) - pose.position) @ rotation[:3, :3].T
+    depth = -local[:, 2]
+    if not np.all(depth > 0.0):
+        return cone
+    return min(cone, float(np.max(np.abs(local[:, :2]) / depth[:, None])))
+
+
+def spot_shadowing_casters(
+    pose: LightPose, casters: list[ActorState], receivers: list[ActorState]
+) -> list[ActorState]:
+    """Return the casters that can shadow a receiver of a point or spot light.
+
+    A flat caster (a ground) with every other receiver on the light's side of
+    it shadows nothing, as for a directional light.
+
+    Parameters
+    ----------
+    pose : LightPose
+        The light.
+    casters, receivers : list of ActorState
+        The light's casters and the renderer's receivers.
+
+    Returns
+    -------
+    list of ActorState
+        The casters that matter for the fit of the light's map.
+    """
+    kept = []
+    for state in casters:
+        others = np.array([r.bounds for r in receivers if r is not state]).reshape(-1, 2, 3)
+        away = state.bounds.mean(axis=0) - pose.position
+        if not _flat_and_lit_above(state, away, others):
+            kept.append(state)
+    return kept
 
 
 @dataclass(frozen=True)

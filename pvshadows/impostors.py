@@ -19,7 +19,7 @@ normals of their own. These actors have no triangles, so:
 
 from __future__ import annotations
 
-import vtk
+from pvshadows import _vtk as vtk
 
 #: Techniques whose lookups work at any fragment's own position.
 LIGHT_SPACE_TECHNIQUES = frozenset({"cubemap", "map"})

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.fitting import SunFit, spot_fit, sun_fit, sun_rotation
+from pvshadows.fitting import SunFit, spot_fit, spot_shadowing_casters, sun_fit, sun_rotation
 from pvshadows.gl.textures import DepthMap
 from pvshadows.lights import LightKind
 from pvshadows.passes.map_depth import MapCaster, MapDepthPass
@@ -44,6 +44,7 @@ class MapState:
     params: tuple = ()
     range_key: tuple | None = None
     range: tuple[float, float] = (0.0, 1.0)
+    range_snapshot: object = None
     texel: float = 1.0
 
     def release(self) -> None:
@@ -108,10 +109,14 @@ class MapTechnique(PerLightMaps):
         ranged = inside or context.snapshot.casters
         keys = tuple(c.key() for c in inside)
         range_key = (pose.key(), settings.resolution, keys or tuple(c.key() for c in ranged))
-        if range_key != state.range_key:
+        if range_key != state.range_key or state.range_snapshot is not context.snapshot:
             nearest, far = distance_range(pose.position, ranged)
+            receivers = [a for a in context.snapshot.actors if a.receiver]
+            shadowing = spot_shadowing_casters(pose, inside, receivers)
+            boxes = np.array([c.bounds for c in shadowing]).reshape(-1, 2, 3)
+            fit = spot_fit(pose, settings.resolution, far * 1e-4, far, boxes)
             state.range_key, state.range = range_key, (nearest, far)
-            fit = spot_fit(pose, settings.resolution, far * 1e-4, far)
+            state.range_snapshot = context.snapshot
             state.world_to_light = translation(-pose.position)
             state.light_to_clip = fit.light_to_clip
             state.texel = fit.texel
@@ -121,7 +126,7 @@ class MapTechnique(PerLightMaps):
         if not inside:
             state.key = None
             return [PassReport("map depth", "skipped", "no caster inside the spot's cone")]
-        key = (pose.key(), settings.resolution, settings.cull_front, keys)
+        key = (pose.key(), settings.resolution, settings.cull_front, state.texel, keys)
         detail = f"{len(inside)} of {len(context.snapshot.casters)} casters inside the cone"
         return self._render(
             state, key, inside, context, far, along_z=False, detail=detail, settings=settings
