@@ -96,12 +96,13 @@ def test_a_fault_at_the_end_of_the_frame_is_caught(small, monkeypatch, capfd):
 
 
 def test_a_fault_in_the_receiver_edits_leaves_vtk_shaders(small, monkeypatch):
-    from pvshadows import frame
+    from pvshadows import receivers
 
     pl = small.plotter
     pl.shadows.enable(filter="hard")
     draw(pl)
-    monkeypatch.setattr(frame, "receiver_replacements", _broken)
+    monkeypatch.setattr(receivers, "receiver_replacements", _broken)
     with pytest.warns(UserWarning, match="receiver shader edits"):
+        pl.shadows.configure(small.light, filter="pcf")  # new lookups: edits are rebuilt
         draw(pl)
     assert _shader_edits(small) == [(0, 0)] * 4
