@@ -63,6 +63,10 @@ shaders (``glsl/``), so that a light lying in a surface's own plane does not
 light it by the sign of a rounding error.
 """
 
+LIGHT_SKIP = 1e-5
+"""A shadow ray that meets a surface closer than this to the light (fraction of the scene
+diagonal) looks again from there: the light lies on that surface."""
+
 _BOX_MARGIN = 1e-3
 """Margin around the scene's bounds, as a fraction of its diagonal, where primary rays start."""
 
@@ -808,5 +812,13 @@ class _Tracer:
             reach = np.minimum(span, np.maximum(leave, 0.0) + _BOX_MARGIN)
             origins = points[pixel] + toward * reach[:, None]
             triangle, blocker = self.shadow.first_hit(origins, -toward)
+            # A light on a surface: float32 meets that surface at the ray's start even when
+            # the ray leaves it; look again from just past it (a ray into the caster still
+            # meets the caster's far side).
+            grazed = (triangle >= 0) & (blocker < LIGHT_SKIP) & (blocker < reach - RAY_TOLERANCE)
+            if grazed.any():
+                start = origins[grazed] - toward[grazed] * LIGHT_SKIP
+                again, further = self.shadow.first_hit(start, -toward[grazed])
+                triangle[grazed], blocker[grazed] = again, further + LIGHT_SKIP
             open_ray[pixel, sample] = (triangle < 0) | (blocker >= reach - RAY_TOLERANCE)
         return open_ray.sum(axis=1) / self.emitter.samples
