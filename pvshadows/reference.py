@@ -62,6 +62,10 @@ shaders (``glsl/``), so that a light lying in a surface's own plane does not
 light it by the sign of a rounding error.
 """
 
+LIGHT_SKIP = 1e-5
+"""A shadow ray that meets a surface closer than this to the light (fraction of the scene
+diagonal) looks again from there: the light lies on that surface."""
+
 _BOX_MARGIN = 1e-3
 """Margin around the scene's bounds, as a fraction of its diagonal, where primary rays start."""
 
@@ -839,8 +843,10 @@ class _Tracer:
         """
         passed = np.ones(origins.shape[0])
         going = np.arange(origins.shape[0])
-        for _ in range(_MAX_CROSSINGS):
+        for crossing in range(_MAX_CROSSINGS):
             triangle, blocker = self.shadow.first_hit(origins[going], directions[going])
+            if crossing == 0:
+                self._look_past_the_light(origins, directions, reach, triangle, blocker)
             blocked = (triangle >= 0) & (blocker < reach[going] - RAY_TOLERANCE)
             through = np.where(blocked, self.transmittance[self.shadow.owner[triangle]], 1.0)
             passed[going] *= through
@@ -853,3 +859,24 @@ class _Tracer:
         else:
             passed[going] = 0.0
         return passed
+
+    def _look_past_the_light(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        reach: np.ndarray,
+        triangle: np.ndarray,
+        blocker: np.ndarray,
+    ) -> None:
+        """Cast again, from just past it, each ray that meets a surface right at the light.
+
+        A light on a surface: float32 meets that surface at the ray's start
+        even when the ray leaves it. Looking again from just past it keeps a
+        ray into the caster meeting the caster's far side. ``triangle`` and
+        ``blocker`` are updated in place.
+        """
+        grazed = (triangle >= 0) & (blocker < LIGHT_SKIP) & (blocker < reach - RAY_TOLERANCE)
+        if grazed.any():
+            start = origins[grazed] + directions[grazed] * LIGHT_SKIP
+            again, further = self.shadow.first_hit(start, directions[grazed])
+            triangle[grazed], blocker[grazed] = again, further + LIGHT_SKIP

@@ -44,3 +44,13 @@ def test_a_point_light_among_its_casters_keeps_the_cube():
     scene.plotter.shadows.enable(filter="hard")
     scene.plotter.shadows.visibility(scene.light)
     assert scene.plotter.shadows.last_frame.lights[0].technique == "cubemap"
+
+
+def test_receivers_outside_the_casters_cone_stay_lit():
+    scene = standard_scene(window_size=SMALL, light_position=(60.0, 30.0, 60.0))
+    scene.plotter.shadows.set_caster(scene.ground, False)
+    scene.plotter.shadows.enable(filter="pcf")
+    error = scene.plotter.shadows.measure(scene.light)
+    assert "a perspective map" in " ".join(scene.plotter.shadows.last_frame.lights[0].notes)
+    assert error.misclassified <= 0.002
+    assert error.lit_pixels > 40000

@@ -10,15 +10,24 @@ SMALL = (400, 300)
 
 
 @pytest.mark.parametrize(
-    "position",
-    [(-2.0, -0.3, 2.1), (0.9, -2.1, 1.8), (0.3, -0.2, 0.0)],
-    ids=["box top", "cylinder cap centre", "ground"],
+    ("position", "technique"),
+    [
+        ((-2.0, -0.3, 2.1), "volume"),
+        ((-2.0, -0.9, 1.7), "volume"),
+        ((-2.6, -0.9, 1.7), "volume"),
+        ((-2.0, -0.9, 1.7), "cubemap"),
+        ((0.9, -2.1, 1.8), "volume"),
+        ((0.3, -0.2, 0.0), "volume"),
+    ],
+    ids=["box top", "box side", "box edge", "box side cubemap", "cylinder cap", "ground"],
 )
-def test_a_light_on_a_casters_face(position):
+def test_a_light_on_a_casters_face(position, technique):
+    """The light's own face does not block it: only what lies behind that face is dark."""
     scene = standard_scene(window_size=SMALL, light_position=position)
-    scene.plotter.shadows.enable(technique="volume")
+    scene.plotter.shadows.enable(technique=technique, filter="hard")
     error = scene.plotter.shadows.measure(scene.light)
     assert error.misclassified <= 0.002
+    assert error.lit_pixels > 900
 
 
 def _enclosed(radius):
