@@ -619,7 +619,7 @@ def append_overhead_table(out: Path, *, quick: bool = False) -> str:
     out : pathlib.Path
         Folder holding ``bench.md``.
     quick : bool, default: False
-        Only the smallest scene of each series.
+        Only the standard scene with a point light, a few frames.
 
     Returns
     -------
@@ -628,7 +628,9 @@ def append_overhead_table(out: Path, *, quick: bool = False) -> str:
     """
     from pvshadows.overhead import overhead_scenes, run_overhead, write_overhead
 
-    table = write_overhead(run_overhead(overhead_scenes(quick=quick)), out)
+    frames, budget_s = (5, 5.0) if quick else (20, 20.0)
+    rows = run_overhead(overhead_scenes(quick=quick), frames=frames, budget_s=budget_s)
+    table = write_overhead(rows, out)
     return _append(out, ["", "Overhead per frame:", "", table])
 
 

@@ -32,7 +32,29 @@ def frustum_planes(camera: vtk.vtkCamera, aspect: float) -> np.ndarray:
     (6, 4)
     """
     matrix = camera.GetCompositeProjectionTransformMatrix(aspect, -1, 1)
-    m = np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
+    return clip_planes(np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)]))
+
+
+def clip_planes(m: np.ndarray) -> np.ndarray:
+    """Return the six frustum planes of a world-to-clip matrix (depth in [-1, 1]).
+
+    Parameters
+    ----------
+    m : numpy.ndarray
+        ``(4, 4)`` world-to-clip matrix.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(6, 4)`` unit-normal planes, as :func:`frustum_planes` returns them.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.culling import clip_planes
+    >>> clip_planes(np.eye(4))[0].tolist()
+    [1.0, 0.0, 0.0, 1.0]
+    """
     planes = np.array(
         [m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[3] + m[2], m[3] - m[2]]
     )

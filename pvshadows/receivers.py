@@ -32,9 +32,11 @@ _LIT_POINTS = "lit points"
 def _same(a: object, b: object) -> bool:
     if a is b:
         return True
-    if isinstance(a, np.ndarray | tuple | list) or isinstance(b, np.ndarray | tuple | list):
-        return np.shape(a) == np.shape(b) and bool(np.array_equal(a, b))
-    return type(a) is type(b) and a == b
+    if isinstance(a, np.ndarray) and isinstance(b, np.ndarray):
+        return a.shape == b.shape and bool((a == b).all())
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray) or type(a) is not type(b):
+        return False
+    return bool(a == b)
 
 
 def _signature(pbr: bool, lights: list[LightShading]) -> tuple:

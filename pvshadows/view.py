@@ -12,11 +12,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.culling import frustum_planes
+from pvshadows.culling import clip_planes
 
 
 def _array(matrix: vtk.vtkMatrix4x4) -> np.ndarray:
-    return np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
+    elements = np.zeros(16)
+    matrix.DeepCopy(elements, matrix)  # one call instead of sixteen GetElement
+    return elements.reshape(4, 4)
 
 
 @dataclass(frozen=True)
@@ -84,7 +86,7 @@ class FrameView:
             projection @ world_to_view,
             aspect,
             (int(width), int(height)),
-            frustum_planes(camera, aspect),
+            clip_planes(projection @ world_to_view),
         )
 
     def light_in_view(self, light: np.ndarray) -> np.ndarray:

@@ -77,6 +77,10 @@ def test_bench_writes_table_and_frontier(tmp_path):
     assert "silhouette + volume, point light" in table
     assert "Shadow volumes built on the CPU" in out
     assert (tmp_path / "frontier.png").stat().st_size > 10_000
+    overhead = table[table.index("Overhead per frame") :]
+    assert "| standard scene, point |" in overhead
+    assert "| standard scene, point |" in (tmp_path / "overhead.md").read_text()
+    assert "standard scene, point" in (tmp_path / "overhead.csv").read_text()
 
 
 def test_bad_command_line_is_refused():

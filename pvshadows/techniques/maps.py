@@ -46,6 +46,9 @@ class MapState:
     range: tuple[float, float] = (0.0, 1.0)
     range_snapshot: object = None
     texel: float = 1.0
+    fit_key: tuple | None = None
+    fitted: SunFit | None = None
+    casters_of: tuple | None = None
 
     def release(self) -> None:
         """Release the map."""
@@ -137,13 +140,14 @@ class MapTechnique(PerLightMaps):
     ) -> list[PassReport]:
         pose, settings = plan.pose, plan.settings
         actors = context.snapshot.actors
-        fit: SunFit | None = sun_fit(
-            pose,
-            actors,
-            context.camera,
-            context.renderer.GetTiledAspectRatio(),
-            settings.resolution,
-        )
+        # The fit depends on the light, the actors and the view: the same three give the same fit.
+        fit_key = (pose.key(), settings.resolution, context.view.world_to_clip.tobytes())
+        if state.fit_key is None or state.fit_key[0] != fit_key or state.fit_key[1] is not actors:
+            state.fitted = sun_fit(
+                pose, actors, context.camera, context.view.aspect, settings.resolution
+            )
+            state.fit_key = (fit_key, actors)
+        fit: SunFit | None = state.fitted
         state.drawn = fit is not None
         if fit is None:
             state.key = None
@@ -153,7 +157,10 @@ class MapTechnique(PerLightMaps):
         if state.fit is not None and state.fit.covers(fit):
             fit = state.fit
         state.fit = fit
-        drawn = fit.casters_in(actors)
+        kept = state.casters_of
+        if kept is None or kept[0] is not fit or kept[1] is not actors:
+            state.casters_of = (fit, actors, fit.casters_in(actors))
+        drawn = state.casters_of[2]
         state.world_to_light = fit.world_to_light()
         state.light_to_clip = np.diag([1.0 / fit.half_width, 1.0 / fit.half_width, 0.0, 1.0])
         tangent = np.tan(np.radians(settings.light_size))
