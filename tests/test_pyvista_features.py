@@ -55,8 +55,8 @@ def _wireframe_hidden_lines(pl):
 
 
 def _edges(pl):
-    for actor in pl.actors.values():
-        actor.prop.show_edges = True
+    for name in ("ground", "box", "sphere", "cylinder"):
+        pl.actors[name].prop.show_edges = True
 
 
 FEATURES = {
@@ -134,6 +134,27 @@ def test_feature_keeps_shadows_right_over_moving_frames(feature, technique):
         assert pl.shadows.last_frame.lights[0].technique == technique
     pl.camera_position, scene.light.position = camera, light
     scene.light.focal_point = tuple(np.asarray(light) - [0.0, 0.0, 1.0])
+    pl.shadows.disable()
+    assert np.array_equal(draw(pl), plain)
+
+
+@pytest.mark.parametrize(
+    "feature", ["ssaa", "eye_dome_lighting", "ssao", "parallel_projection", "show_edges"]
+)
+def test_spot_light_maps_stay_right_with_features(feature):
+    scene = standard_scene(window_size=WINDOW, light="spot", cone_angle=50.0)
+    pl = scene.plotter
+    FEATURES[feature](pl)
+    camera, light = pl.camera_position, (scene.light.position, scene.light.focal_point)
+    plain = draw(pl)
+    pl.shadows.enable(technique="map")
+    for _ in _frames(scene):
+        error = pl.shadows.measure(scene.light)
+        assert error.lit_pixels > 5_000, error
+        assert error.misclassified <= BOUNDS["map"], error
+        assert pl.shadows.last_frame.lights[0].technique == "map"
+    pl.camera_position = camera
+    scene.light.position, scene.light.focal_point = light
     pl.shadows.disable()
     assert np.array_equal(draw(pl), plain)
 

@@ -23,7 +23,8 @@ def park_active_unit(window: vtk.vtkOpenGLRenderWindow) -> int:
     Returns
     -------
     int
-        The unit made active (free: no texture is allocated to it).
+        The unit made active (free: no texture is allocated to it), or -1
+        when every unit is taken (the active unit is then left as it is).
 
     Examples
     --------
@@ -36,6 +37,8 @@ def park_active_unit(window: vtk.vtkOpenGLRenderWindow) -> int:
     """
     units = window.GetTextureUnitManager()
     unit = units.Allocate()
+    if unit < 0:
+        return -1
     units.Free(unit)
     window.GetState().vtkglActiveTexture(opengl_for(window).GL_TEXTURE0 + unit)
     return unit
