@@ -5,8 +5,9 @@ Accuracy against time
 What does a sharper or softer shadow cost? ``pvshadows bench`` renders the
 same scene with every technique and setting, measures each frame against ray
 tracing, and times it against the same scene drawn without shadows. Here a
-handful of its cases run through :mod:`pvshadows.bench` in a small window, so
-this takes well under a minute; the :doc:`accuracy and cost </accuracy>` page
+handful of its cases run through :mod:`pvshadows.bench` in a small window,
+with few frames per median and an area light of 32 rays per pixel, so this
+takes well under a minute; the :doc:`accuracy and cost </accuracy>` page
 shows the whole bench.
 
 Read the plot from the bottom left: cheap and right. A point no other point
@@ -34,7 +35,7 @@ cases = [
 # Each case: the error against the ray-traced reference of the same frame, and
 # the median frame time over the median time of the plain frame, with the light
 # nudged every frame (every pass runs) and with a static scene (maps reused).
-rows = run_bench(cases, frames=4, window_size=(400, 300))
+rows = run_bench(cases, frames=4, window_size=(400, 300), reference_samples=32)
 
 with tempfile.TemporaryDirectory() as folder:
     write_table(rows, Path(folder))

@@ -937,7 +937,8 @@ def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], colou
             linewidths=0.4,
             zorder=3,
         )
-    front = pareto_front(rows, error)
+    # Cases where only some actors receive (planar: the ground) judge another picture.
+    front = pareto_front([r for r in rows if "receivers=" not in r.setting] or rows, error)
     # The frontier runs on to the dearest case, so a single exact and cheap case still shows it.
     axes.step(
         [r.ratio_moving for r in front] + [max(r.ratio_moving for r in rows)],
@@ -957,10 +958,18 @@ def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], colou
         axes.set_yscale("log")
     axes.grid(alpha=0.3, which="both")
     axes.figure.canvas.draw()
-    _place_labels(axes, [(r.ratio_moving, error(r), _short(r.setting)) for r in front])
+    _place_labels(axes, [(r.ratio_moving, error(r), _label(r)) for r in front])
 
 
-def _legend(figure, rows: list[BenchRow], colours: dict) -> None:
+def _label(row: BenchRow) -> str:
+    """Return a frontier point's label: its values, and its technique when it has no filter."""
+    short = _short(row.setting)
+    if _filter_of(row) is not None:
+        return short
+    return f"{row.technique.split()[0]} {short}".strip()
+
+
+def _legend(figure, rows: list[BenchRow], colours: dict, columns: int) -> None:
     from matplotlib.lines import Line2D
 
     def marker(shape: str, colour, label: str) -> Line2D:
@@ -976,7 +985,7 @@ def _legend(figure, rows: list[BenchRow], colours: dict) -> None:
     if None in kinds:
         handles.append(marker(NO_FILTER, "0.7", "no filter (volume, planar, VTK)"))
     handles.append(Line2D([], [], color="0.5", label="frontier (labelled: its settings)"))
-    figure.legend(handles=handles, loc="lower center", ncol=min(len(handles), 6), fontsize=9)
+    figure.legend(handles=handles, loc="lower center", ncol=columns, fontsize=9)
 
 
 def plot_frontier(rows: list[BenchRow], path: Path) -> None:
@@ -1007,7 +1016,7 @@ def plot_frontier(rows: list[BenchRow], path: Path) -> None:
     figure, panels = plt.subplots(
         len(lights),
         columns,
-        figsize=(6.5 * columns, 4.2 * len(lights) + 1.2),
+        figsize=(6.5 * columns if soft else 8.0, 4.2 * len(lights) + 1.4),
         dpi=100,
         squeeze=False,
     )
@@ -1030,7 +1039,7 @@ def plot_frontier(rows: list[BenchRow], path: Path) -> None:
     for axes in panels[-1]:
         axes.set_xlabel("frame time / plain frame time (light moving)")
     figure.suptitle("pvshadows: accuracy against cost")
-    _legend(figure, rows, colours)
-    figure.tight_layout(rect=(0, 0.07 if len(lights) > 1 else 0.12, 1, 0.98))
+    _legend(figure, rows, colours, 4 if soft else 3)
+    figure.tight_layout(rect=(0, 1.2 / (4.2 * len(lights) + 1.4), 1, 0.98))
     figure.savefig(path)
     plt.close(figure)

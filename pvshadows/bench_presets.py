@@ -33,8 +33,10 @@ from pvshadows.settings import QUALITY_PRESETS, preset, validated
 
 #: Largest share of lit-side pixels ``draft`` may misclassify, for every kind of light.
 DRAFT_WITHIN = 0.005
-#: Largest share of lit-side pixels ``balanced`` may misclassify, for every kind of light.
-BALANCED_WITHIN = 0.001
+#: Largest share of lit-side pixels ``balanced`` may misclassify, for every kind of light
+#: (between draft's and exact's; at 0.1 % only 2048-texel PCF qualified, at 3.4 times the
+#: plain frame, on the bench that set the package's presets).
+BALANCED_WITHIN = 0.002
 #: Largest share of lit-side pixels ``exact`` may misclassify ("pixel-exact").
 EXACT_WITHIN = 0.0001
 #: The lights a preset must keep its promise for.
@@ -194,10 +196,12 @@ def choose_presets(rows: list[BenchRow]) -> dict[str, Pick]:
 
 
 def dominated_by(pick: Pick, rows: list[BenchRow]) -> list[BenchRow]:
-    """Return the rows that beat a preset on both error and cost, for some kind of light.
+    """Return the rows that beat a preset on every measure at once, for some kind of light.
 
-    Error is the share misclassified, and for ``balanced`` (soft edges) the
-    RMSE against the area light where it was measured.
+    The measures: the share misclassified, the RMSE against the area light
+    (where both were measured) and the time ratio with the light moving.
+    Cases where only some actors receive (planar shadows) judge another
+    picture and are left out.
 
     Parameters
     ----------
@@ -212,18 +216,24 @@ def dominated_by(pick: Pick, rows: list[BenchRow]) -> list[BenchRow]:
         The rows that dominate it (empty: it is on the frontier).
     """
 
-    def error(row: BenchRow) -> float:
-        if pick.quality == "balanced" and not math.isnan(row.rmse_area):
-            return row.rmse_area
-        return row.misclassified
+    def beats(row: BenchRow, mine: BenchRow) -> bool:
+        softer = (
+            math.isnan(row.rmse_area)
+            or math.isnan(mine.rmse_area)
+            or row.rmse_area < mine.rmse_area
+        )
+        return (
+            row.ratio_moving < mine.ratio_moving
+            and row.misclassified < mine.misclassified
+            and softer
+        )
 
-    beaten = []
-    for mine in pick.rows:
-        for row in rows:
-            if row.light == mine.light and "receivers=" not in row.setting and row is not mine:
-                if row.ratio_moving < mine.ratio_moving and error(row) < error(mine):
-                    beaten.append(row)
-    return beaten
+    return [
+        row
+        for mine in pick.rows
+        for row in rows
+        if row.light == mine.light and "receivers=" not in row.setting and beats(row, mine)
+    ]
 
 
 def write_presets(picks: dict[str, Pick], out: Path) -> Path:
@@ -254,19 +264,21 @@ def _words(settings: dict) -> str:
 
 
 def presets_lines(picks: dict[str, Pick], rows: list[BenchRow]) -> list[str]:
-    """Return the presets table of ``bench.md``: each pick, the numbers it stands on, the package's.
+    """Return the presets table of ``bench.md``: each pick and the numbers it stands on.
 
     Parameters
     ----------
     picks : dict of str to Pick
         From :func:`choose_presets`.
     rows : list of BenchRow
-        Every measurement (to say what, if anything, dominates a pick).
+        Every measurement (to say what, if anything, beats a pick on both
+        error and cost).
 
     Returns
     -------
     list of str
-        Markdown lines, a caption and a table.
+        Markdown lines: a caption and a table with one row per preset and
+        kind of light.
     """
     if not picks:
         return [
@@ -276,23 +288,21 @@ def presets_lines(picks: dict[str, Pick], rows: list[BenchRow]) -> list[str]:
         ]
     lines = [
         "",
-        "Quality presets (`pl.shadows.enable(quality=...)`) chosen by this bench, "
-        "and the numbers each stands on:",
+        "Quality presets chosen by this bench (`presets.json`), and the numbers each stands on:",
         "",
-        "| light | quality | promise | chosen here | misclassified | RMSE against the area light "
-        "| time ratio (light moving) | kept | dominated by | package preset |",
-        "| --- | --- | --- | --- | ---: | ---: | ---: | --- | --- | --- |",
+        "| quality | light | chosen here | misclassified | RMSE, area light | time ratio "
+        "| promise kept | beaten on all three by | package preset |",
+        "| --- | --- | --- | ---: | ---: | ---: | --- | --- | --- |",
     ]
     for quality, pick in picks.items():
-        package = "same" if _same(pick, quality) else _words(QUALITY_PRESETS[quality])
+        package = "the same" if _same(pick, quality) else _words(QUALITY_PRESETS[quality])
         for row in pick.rows:
-            mine = Pick(quality, pick.settings, (row,), pick.kept)
-            beaten = dominated_by(mine, rows)
+            beaten = dominated_by(Pick(quality, pick.settings, (row,), pick.kept), rows)
             rmse = "—" if math.isnan(row.rmse_area) else f"{row.rmse_area:.4f}"
             lines.append(
-                f"| {row.light} | {quality} | {PROMISES[quality]} | {row.technique} "
-                f"{row.setting} | {100 * row.misclassified:.3f} % | {rmse} "
-                f"| {row.ratio_moving:.2f} | {'yes' if pick.kept else 'no'} "
+                f"| {quality} | {row.light} | {row.technique} {row.setting} "
+                f"| {100 * row.misclassified:.3f} % | {rmse} | {row.ratio_moving:.2f} "
+                f"| {'yes' if pick.kept else 'no'} "
                 f"| {', '.join(f'{r.technique} {r.setting}' for r in beaten) or 'nothing'} "
                 f"| {package} |"
             )

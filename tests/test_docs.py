@@ -79,10 +79,10 @@ def test_bench_output_becomes_the_accuracy_pages_tables(tmp_path):
     pvshadows_docs.write_bench_rst(bench, out, "measured in a test")
     table = (out / "bench_table.csv").read_text(encoding="utf-8").splitlines()
     assert len(table) == 1 + len(_rows())
-    assert table[3].startswith('volume,point,"extrude=gpu, zmode=zpass",0.000,')
+    assert table[3].startswith('volume (point),"extrude=gpu, zmode=zpass",0.000,')
     presets = (out / "bench_presets.rst").read_text(encoding="utf-8")
-    assert presets.startswith(".. list-table:: Quality presets (``pl.shadows.enable(")
-    assert "     - draft" in presets and "     - exact" in presets
+    assert presets.startswith(".. list-table:: Quality presets chosen by this bench (``presets")
+    assert "   * - draft" in presets and "   * - exact" in presets
     assert "2000" in (out / "bench_silhouettes.rst").read_text(encoding="utf-8")
     assert "8 spots" in (out / "bench_planner.rst").read_text(encoding="utf-8")
     assert (out / "bench_more.rst").read_text(encoding="utf-8") == ""
