@@ -79,6 +79,16 @@ class ProgressBar:
         self.done = min(self.done + 1, self.total)
         self._draw(label)
 
+    def show(self, label: str = "") -> None:
+        """Draw the bar as it stands, with what is being measured.
+
+        Parameters
+        ----------
+        label : str, optional
+            What is under way.
+        """
+        self._draw(label)
+
     def line(self, text: str) -> None:
         """Print a line of results above the bar (to stdout), then redraw the bar.
 

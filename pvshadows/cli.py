@@ -58,6 +58,7 @@ def _bench(args: argparse.Namespace) -> int:
     cases = bench.quick_cases() if args.quick else bench.all_cases()
     sizes = (20_000,) if args.quick else (100_000, 1_000_000)
     bar = ProgressBar(len(cases) + 2)
+    bar.show("setting up; each light's first case also traces its references")
 
     def measured(rows: list) -> None:
         bench.write_table(rows, out)
