@@ -11,6 +11,12 @@ of the two alternating in the same run (ratios, because shared machines are
 noisy). Two ratios are kept: with the light moving every frame, so every
 shadow pass runs, and with a static scene, where maps are reused. VTK's own
 ``enable_shadows()`` is measured the same way beside them.
+
+The cases of one kind of light share one pair of scenes and one reference of
+each kind (:class:`References`), and each median stops as soon as its ratio
+is steady (:func:`steady`), so the full bench (:func:`all_cases`) costs about
+eight CPU-minutes. Quality presets are chosen from the rows by
+:mod:`pvshadows.bench_presets`.
 """
 
 from __future__ import annotations
