@@ -63,4 +63,6 @@ sphinx_gallery_conf = {
 html_theme = "pydata_sphinx_theme"
 html_title = "pvshadows"
 html_theme_options = {"navigation_with_keys": False, "show_toc_level": 2}
+html_static_path = ["_static"]
+html_css_files = ["pvshadows.css"]
 exclude_patterns = ["_build", "_generated"]

@@ -44,7 +44,7 @@ pl.camera_position = [(2700, -1500, 2000), (900, 700, -150), (0, 0, 1)]
 # explicitly, and a mesh that is not flat would be refused with a ValueError.
 pl.shadows.set_receiver(ground, plane=True)
 pl.shadows.enable(technique="planar")
-pl.screenshot("planar_shadows.png")
+_ = pl.screenshot("planar_shadows.png")
 print(pl.shadows.last_frame)
 
 # %%

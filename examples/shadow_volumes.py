@@ -10,18 +10,20 @@ map of the same scene is compared on the same frame.
 """
 
 # %%
-# sphinx_gallery_thumbnail_number = 2
 import pyvista as pv
 
 import pvshadows  # noqa: F401  (registers pl.shadows; installing pvshadows also does)
 
+# sphinx_gallery_thumbnail_number = 2
+
 pl = pv.Plotter(off_screen=True, window_size=(800, 600), lighting="none")
 pl.set_background("#f4f1ea", top="#bcc8d6")
-style = {"ambient": 0.15, "diffuse": 0.85, "specular": 0.2, "smooth_shading": True}
-pl.add_mesh(pv.Plane(i_size=10, j_size=10), color="#d9d4c7", **style)
-pl.add_mesh(pv.Box(bounds=(-2.6, -1.4, -0.9, 0.3, 1.3, 2.1)), color="#c0504d", **style)
-pl.add_mesh(pv.Sphere(radius=0.7, center=(1.6, 1.4, 0.7)), color="#4f81bd", **style)
-pl.add_mesh(
+flat = {"ambient": 0.15, "diffuse": 0.85, "specular": 0.2}
+style = {**flat, "smooth_shading": True}  # round things only: a box's normals would blur
+_ = pl.add_mesh(pv.Plane(i_size=10, j_size=10), color="#d9d4c7", **flat)
+_ = pl.add_mesh(pv.Box(bounds=(-2.6, -1.4, -0.9, 0.3, 1.3, 2.1)), color="#c0504d", **flat)
+_ = pl.add_mesh(pv.Sphere(radius=0.7, center=(1.6, 1.4, 0.7)), color="#4f81bd", **style)
+_ = pl.add_mesh(
     pv.Cylinder(center=(0.9, -2.1, 0.9), direction=(0, 0, 1), radius=0.45, height=1.8),
     color="#9bbb59",
     **style,
@@ -35,7 +37,7 @@ pl.add_light(bulb)
 pl.add_light(sun)
 pl.camera_position = [(11.0, -12.5, 9.5), (0.0, 0.0, 0.3), (0, 0, 1)]
 pl.shadows.enable(technique="volume")
-pl.screenshot("shadow_volumes.png")
+_ = pl.screenshot("shadow_volumes.png")
 print(pl.shadows.last_frame)
 
 # %%
@@ -49,4 +51,4 @@ pl.shadows.configure(bulb, technique="volume")
 # %%
 # The volumes themselves, drawn translucent over the scene.
 pl.shadows.show_volumes(True)
-pl.screenshot("shadow_volumes_debug.png")
+_ = pl.screenshot("shadow_volumes_debug.png")

@@ -24,7 +24,7 @@ print(f"{hills.n_cells} triangles, {hills.bounds.x_max - hills.bounds.x_min:g} u
 
 pl = pv.Plotter(off_screen=True, window_size=(1024, 640), lighting="none")
 pl.set_background("#2b3a55", top="#e8b48a")  # dusk
-pl.add_mesh(
+_ = pl.add_mesh(
     hills,
     scalars="Elevation",
     cmap="terrain",
@@ -54,7 +54,7 @@ pl.add_light(sun)
 # One line for shadows: ``"auto"`` gives a directional light a fitted 2D map.
 pl.shadows.enable(resolution=2048)
 pl.camera_position = [(-14.0, -16.0, 15.0), (0.5, 9.0, 1.0), (0, 0, 1)]
-pl.screenshot("terrain_low_sun.png")
+_ = pl.screenshot("terrain_low_sun.png")
 
 # %%
 # What ran: the map's pass, with the width it was fitted to and the size of a

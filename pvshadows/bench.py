@@ -11,12 +11,18 @@ of the two alternating in the same run (ratios, because shared machines are
 noisy). Two ratios are kept: with the light moving every frame, so every
 shadow pass runs, and with a static scene, where maps are reused. VTK's own
 ``enable_shadows()`` is measured the same way beside them.
+
+The cases of one kind of light share one pair of scenes and one reference of
+each kind (:class:`References`), and each median stops as soon as its ratio
+is steady (:func:`steady`), so the full bench (:func:`all_cases`) costs about
+eight CPU-minutes. Quality presets are chosen from the rows by
+:mod:`pvshadows.bench_presets`.
 """
 
 from __future__ import annotations
 
 import csv
-import itertools
+import math
 import statistics
 import time
 from collections.abc import Callable, Iterable
@@ -35,7 +41,6 @@ from pvshadows.scenes import (
     standard_scene,
     three_lights_scene,
 )
-from pvshadows.settings import QUALITIES
 
 
 @dataclass(frozen=True)
@@ -101,6 +106,10 @@ class BenchRow:
         Median frame time of the static scene (maps reused), over the plain frame.
     frame_ms : float
         Median frame time with the light moving, in milliseconds.
+    rmse_area : float
+        RMSE of visibility against the area-light reference, for every case
+        (hard ones too, so soft and hard edges compare on one scale); NaN
+        where it was not traced (cases with only some receivers, ``--quick``).
     """
 
     technique: str
@@ -112,6 +121,7 @@ class BenchRow:
     ratio_moving: float
     ratio_static: float
     frame_ms: float
+    rmse_area: float = math.nan
 
 
 #: Filters judged against an area-light reference.
@@ -153,62 +163,44 @@ def cubemap_cases(
     ]
 
 
-def filter_cases(technique: str, light: str, resolutions: Iterable[int]) -> list[BenchCase]:
-    """Return one technique's cases over every filter setting, for one kind of light.
+#: The technique that draws each kind of light's shadow map (what ``auto`` picks).
+MAP_TECHNIQUE = {"point": "cubemap", "spot": "map", "directional": "map"}
+#: Map settings measured for every kind of light alike, so a preset can be chosen among them.
+MAP_GRID = (
+    *(
+        {"resolution": r, **f}
+        for r in (256, 512, 1024, 2048)
+        for f in ({"filter": "hard"}, {"filter": "pcf", "pcf_taps": 16})
+    ),
+    *({"resolution": r, "filter": "pcf", "pcf_taps": 4} for r in (512, 1024)),
+    {"resolution": 1024, "filter": "random", "samples": 16},
+    {"resolution": 1024, "filter": "random", "samples": 64},
+)
+
+
+def map_cases(light: str) -> list[BenchCase]:
+    """Return the shadow-map cases of one kind of light: :data:`MAP_GRID` and PCSS.
 
     Parameters
     ----------
-    technique : str
-        ``"cubemap"`` or ``"map"``.
     light : str
-        The scene's light.
-    resolutions : iterable of int
-        Map resolutions.
+        ``"point"`` (cube maps), ``"spot"`` or ``"directional"`` (2D maps).
 
     Returns
     -------
     list of BenchCase
-        hard, pcf 4 and 16 taps, random 16 and 64 samples, and pcss, per resolution.
+        One case per setting of :data:`MAP_GRID`, then PCSS at 1024 texels
+        with the light's size.
 
     Examples
     --------
-    >>> from pvshadows.bench import filter_cases
-    >>> [c.setting for c in filter_cases("map", "spot", [512])][-1]
-    'resolution=512 filter=pcss samples=32 light_size=0.25'
+    >>> from pvshadows.bench import map_cases
+    >>> [case.label for case in map_cases("spot")][-1]
+    'map (spot) resolution=1024 filter=pcss samples=32 light_size=0.25'
     """
-    size = LIGHT_SIZE[light]
-    filters = [
-        {"filter": "hard"},
-        {"filter": "pcf", "pcf_taps": 4},
-        {"filter": "pcf", "pcf_taps": 16},
-        {"filter": "random", "samples": 16},
-        {"filter": "random", "samples": 64},
-        {"filter": "pcss", "samples": 32, "light_size": size},
-    ]
-    return [
-        BenchCase(technique, {"resolution": r, **f}, light) for r in resolutions for f in filters
-    ]
-
-
-def preset_cases() -> list[BenchCase]:
-    """Return the quality presets of ``enable(quality=...)`` for each kind of light.
-
-    Returns
-    -------
-    list of BenchCase
-        ``technique="auto"`` with each quality, for point, spot and directional lights.
-
-    Examples
-    --------
-    >>> from pvshadows.bench import preset_cases
-    >>> preset_cases()[0].label
-    'auto (point) quality=draft'
-    """
-    return [
-        BenchCase("auto", {"quality": quality}, light)
-        for light in ("point", "spot", "directional")
-        for quality in QUALITIES
-    ]
+    technique = MAP_TECHNIQUE[light]
+    pcss = {"resolution": 1024, "filter": "pcss", "samples": 32, "light_size": LIGHT_SIZE[light]}
+    return [BenchCase(technique, dict(settings), light) for settings in (*MAP_GRID, pcss)]
 
 
 def all_cases() -> list[BenchCase]:
@@ -217,28 +209,57 @@ def all_cases() -> list[BenchCase]:
     Returns
     -------
     list of BenchCase
-        Point light: cube map x resolution x filter x passes, the soft
-        filters, and shadow volumes (GPU and CPU extrusion, z-pass and
-        z-fail); spot light: 2D map x resolution x filter, volumes, and VTK's
-        ``enable_shadows()``; directional light: fitted 2D map x resolution x
-        filter, and volumes; every light: planar shadows on the ground alone.
+        For each kind of light (point, spot, directional, in that order):
+        its shadow map over :data:`MAP_GRID` and PCSS, shadow volumes
+        (GPU and CPU extrusion; for the point light also forced z-fail),
+        and planar shadows on the ground alone; for the point light also the
+        cube filled by six draws; for the spot light VTK's
+        ``enable_shadows()``.
 
     Examples
     --------
     >>> from pvshadows.bench import all_cases
     >>> sorted({c.technique for c in all_cases()})
-    ['auto', 'cubemap', 'map', 'planar', 'volume', 'vtk']
+    ['cubemap', 'map', 'planar', 'volume', 'vtk']
+    >>> len(all_cases())
+    54
     """
-    cases = cubemap_cases()
-    cases += [c for c in filter_cases("cubemap", "point", [1024]) if c.soft]
-    cases += volume_cases()
-    cases += filter_cases("map", "spot", [512, 1024, 2048])
+    cases = map_cases("point")
+    cases += cubemap_cases(resolutions=(512, 1024, 2048), filters=("hard",), passes=("six",))
+    cases += volume_cases(zmodes=("auto", "zfail"))
+    cases += planar_cases(["point"])
+    cases += map_cases("spot")
     cases += volume_cases(zmodes=("auto",), light="spot")
+    cases += planar_cases(["spot"])
     cases.append(BenchCase("vtk", {}, "spot"))
-    cases += filter_cases("map", "directional", [1024, 2048])
+    cases += map_cases("directional")
     cases += volume_cases(zmodes=("auto",), light="directional")
-    cases += planar_cases()
-    return cases + preset_cases()
+    cases += planar_cases(["directional"])
+    return cases
+
+
+def quick_cases() -> list[BenchCase]:
+    """Return the cases of ``pvshadows bench --quick``: one of each kind, to check the bench runs.
+
+    Returns
+    -------
+    list of BenchCase
+        Point light: a hard and a PCF cube map of 256 texels and GPU shadow
+        volumes; spot light: a hard 2D map of 256 texels and planar shadows.
+
+    Examples
+    --------
+    >>> from pvshadows.bench import quick_cases
+    >>> len(quick_cases())
+    5
+    """
+    cases = [
+        BenchCase("cubemap", {"resolution": 256, "filter": "hard"}),
+        BenchCase("cubemap", {"resolution": 256, "filter": "pcf", "pcf_taps": 16}),
+        *volume_cases(extrudes=("gpu",), zmodes=("auto",)),
+        BenchCase("map", {"resolution": 256, "filter": "hard"}, "spot"),
+    ]
+    return cases + planar_cases(["spot"])
 
 
 def planar_cases(lights: Iterable[str] = ("point", "spot", "directional")) -> list[BenchCase]:
@@ -411,15 +432,24 @@ class PairedClock:
         self._gl.glFinish()
         return (time.perf_counter() - start) * 1e3
 
-    def medians(self, count: int, *, moving: bool) -> tuple[float, float]:
+    def medians(
+        self, count: int, *, moving: bool, at_least: int | None = None, spread: float = 0.03
+    ) -> tuple[float, float]:
         """Return the median frame times (plain, shadowed) in milliseconds.
 
         Parameters
         ----------
         count : int
-            Timed frames of each scene (two more of each are drawn first).
+            Most timed frames of each scene (two more of each are drawn first).
         moving : bool
             Nudge the light by a hair every frame, so no map can be reused.
+        at_least : int, optional
+            Stop after this many timed frames once the ratio is steady: the
+            spread of the per-frame ratios (interquartile range over the
+            median, divided by the square root of the frames) is below
+            ``spread``. By default all ``count`` frames are timed.
+        spread : float, default: 0.03
+            The steadiness asked of the ratio.
 
         Returns
         -------
@@ -433,9 +463,40 @@ class PairedClock:
                 elapsed = self._frame(scene, home, nudge)
                 if frame >= 2:
                     kept.append(elapsed)
+            if at_least is not None and len(times[0]) >= at_least and steady(*times, spread):
+                break
         for scene, home in zip(self._scenes, self._homes, strict=True):
             scene.light.position = tuple(home)
         return statistics.median(times[0]), statistics.median(times[1])
+
+
+def steady(plain: list[float], shadowed: list[float], spread: float) -> bool:
+    """Whether frame-by-frame ratios are steady enough for their median to be kept.
+
+    Parameters
+    ----------
+    plain, shadowed : list of float
+        Frame times of the two scenes, frame for frame.
+    spread : float
+        Largest interquartile range of the ratios, over their median and
+        the square root of their number.
+
+    Returns
+    -------
+    bool
+        True when the ratios vary less than ``spread`` asks.
+
+    Examples
+    --------
+    >>> from pvshadows.bench import steady
+    >>> steady([10.0, 10.0, 10.0], [15.0, 15.1, 14.9], 0.03)
+    True
+    >>> steady([10.0, 10.0, 10.0], [15.0, 30.0, 10.0], 0.03)
+    False
+    """
+    ratios = np.asarray(shadowed) / np.asarray(plain)
+    low, middle, high = np.percentile(ratios, [25, 50, 75])
+    return bool((high - low) / middle / math.sqrt(len(ratios)) < spread)
 
 
 def _receive_only(scene: StandardScene, names: tuple[str, ...]) -> None:
@@ -444,91 +505,146 @@ def _receive_only(scene: StandardScene, names: tuple[str, ...]) -> None:
         scene.plotter.shadows.set_receiver(getattr(scene, name), not names or name in names)
 
 
+class References:
+    """The ray-traced references of one light's scene, each traced once and shared by every case.
+
+    Every case of a light renders the same frame (same scene, camera and
+    light), so its exact hard visibility and its area-light visibility are
+    the same for all of them; only the receivers change it.
+
+    Parameters
+    ----------
+    scene : StandardScene
+        The shadowed scene (its component traces).
+    light : str
+        Its kind of light, which sizes the area light (:data:`LIGHT_SIZE`).
+    samples : int
+        Shadow rays per pixel of the area-light reference.
+    """
+
+    def __init__(self, scene: StandardScene, light: str, samples: int) -> None:
+        self._scene = scene
+        self._size = LIGHT_SIZE[light]
+        self._samples = samples
+        self._traced: dict[tuple, object] = {}
+
+    def hard(self, receivers: tuple[str, ...]):
+        """Return the exact hard visibility (a ``ReferenceResult``) with these receivers."""
+        return self._trace(receivers, 0.0, 1)
+
+    def area(self, receivers: tuple[str, ...]):
+        """Return the area light's visibility with these receivers."""
+        return self._trace(receivers, self._size, self._samples)
+
+    def _trace(self, receivers: tuple[str, ...], size: float, samples: int):
+        key = (receivers, size, samples)
+        if key not in self._traced:
+            shadows = self._scene.plotter.shadows
+            self._traced[key] = shadows._trace(self._scene.light, light_size=size, samples=samples)
+        return self._traced[key]
+
+
+def _vtk_visibility(scene: StandardScene, clock: PairedClock, frames: int, at_least: int):
+    plotter = scene.plotter
+    plotter.enable_shadows()
+    base, moving = clock.medians(frames, moving=True, at_least=at_least)
+    plotter.disable_shadows()
+    return builtin_visibility(plotter, scene.light), (base, moving), (base, moving)
+
+
+def _own_visibility(scene: StandardScene, clock: PairedClock, frames: int, at_least: int, case):
+    shadows = scene.plotter.shadows
+    shadows.enable(technique=case.technique, **case.settings)
+    moving = clock.medians(frames, moving=True, at_least=at_least)
+    static = clock.medians(frames, moving=False, at_least=at_least)
+    return shadows.visibility(scene.light), moving, static
+
+
 def _bench_light(
     cases: list[BenchCase],
     light: str,
-    frames: int,
-    window_size: tuple[int, int],
-    progress: Callable[[str], None],
-    done: int,
-    total: int,
-) -> list[tuple[BenchCase, BenchRow]]:
+    options: dict,
+    on_row: Callable[[BenchCase, BenchRow], None],
+) -> None:
+    window_size = options["window_size"]
     shadowed = standard_scene(window_size=window_size, light=light)
     plain = standard_scene(window_size=window_size, light=light)
     for scene in (shadowed, plain):
         scene.plotter.screenshot(return_img=True)
     clock = PairedClock(shadowed, plain)
-    plotter, shadows = shadowed.plotter, shadowed.plotter.shadows
+    shadows = shadowed.plotter.shadows
+    references = References(shadowed, light, options["reference_samples"])
     area_light = f"area light {LIGHT_SIZE[light]:g}{'deg' if light == 'directional' else ''}"
-    rows = []
+    trace_area = options["area"] and any(case.soft for case in cases)
+    frames, at_least = options["frames"], options["at_least"]
     for case in cases:
         _receive_only(shadowed, case.receivers)
         if case.technique == "vtk":
-            plotter.enable_shadows()
-            base_moving, moving = clock.medians(frames, moving=True)
-            base_static, static = base_moving, moving
-            plotter.disable_shadows()
-            shown = builtin_visibility(plotter, shadowed.light)
+            shown, moving, static = _vtk_visibility(shadowed, clock, frames, at_least)
             shadows.enable(filter="hard")
-            hard = compare(shown, shadows._trace(shadowed.light))
-            shadows.disable()
-            error, reference = hard, "hard"
         else:
-            shadows.enable(technique=case.technique, **case.settings)
-            base_moving, moving = clock.medians(frames, moving=True)
-            base_static, static = clock.medians(frames, moving=False)
-            shown = shadows.visibility(shadowed.light)
-            hard = compare(shown, shadows._trace(shadowed.light))
-            error, reference = hard, "hard"
-            if case.soft:
-                traced = shadows._trace(
-                    shadowed.light, light_size=LIGHT_SIZE[light], samples=REFERENCE_SAMPLES
-                )
-                error, reference = compare(shown, traced), area_light
-            shadows.disable()
+            shown, moving, static = _own_visibility(shadowed, clock, frames, at_least, case)
+        hard = compare(shown, references.hard(case.receivers))
+        area = None
+        if trace_area and (case.soft or not case.receivers):
+            area = compare(shown, references.area(case.receivers))
+        shadows.disable()
+        soft = case.soft and area is not None
         row = BenchRow(
             case.technique if case.technique != "vtk" else "vtk enable_shadows()",
             light,
             case.setting,
             hard.misclassified,
-            error.rmse,
-            reference,
-            moving / base_moving,
-            static / base_static,
-            moving,
+            area.rmse if soft else hard.rmse,
+            area_light if soft else "hard",
+            moving[1] / moving[0],
+            static[1] / static[0],
+            moving[1],
+            area.rmse if area is not None else math.nan,
         )
-        rows.append((case, row))
-        done += 1
-        progress(
-            f"[{done}/{total}] {case.label}: misclassified {100 * row.misclassified:.3f} %, "
-            f"RMSE {row.rmse:.4f} vs {reference}, "
-            f"time x{row.ratio_moving:.2f} moving / x{row.ratio_static:.2f} static "
-            f"(plain frame {base_moving:.1f} ms)"
-        )
+        on_row(case, row)
     for scene in (shadowed, plain):
         scene.plotter.close()
-    return rows
 
 
 def run_bench(
     cases: list[BenchCase],
     *,
     frames: int = 10,
+    at_least: int = 3,
     window_size: tuple[int, int] = (800, 600),
+    reference_samples: int = REFERENCE_SAMPLES,
+    area: bool = True,
     progress: Callable[[str], None] = print,
+    on_row: Callable[[list[BenchRow]], None] | None = None,
 ) -> list[BenchRow]:
     """Measure every case on the standard scene lit by the case's kind of light.
+
+    Cases of the same light share one pair of scenes and one ray-traced
+    reference of each kind; each case's frames stop as soon as its time
+    ratio is steady.
 
     Parameters
     ----------
     cases : list of BenchCase
         What to measure.
     frames : int, default: 10
-        Frames per median (at least 10 for the published table).
+        Most timed frames per median.
+    at_least : int, default: 3
+        Fewest timed frames per median; more are timed until the ratio is
+        steady (see :meth:`PairedClock.medians`) or ``frames`` are reached.
     window_size : tuple of int, default: (800, 600)
         Size of the frame.
+    reference_samples : int, default: REFERENCE_SAMPLES
+        Shadow rays per pixel of the area-light reference.
+    area : bool, default: True
+        Trace the area-light reference for lights with soft cases, and
+        judge every case of those lights against it too (``rmse_area``).
     progress : callable, default: print
         Receives one line per finished case.
+    on_row : callable, optional
+        Receives the rows measured so far after each case, in the order
+        measured (to write them as they come).
 
     Returns
     -------
@@ -538,12 +654,29 @@ def run_bench(
     import pvshadows  # noqa: F401 - registers pl.shadows
 
     measured: dict[int, BenchRow] = {}
-    for light in dict.fromkeys(case.light for case in cases):
-        chosen = [case for case in cases if case.light == light]
-        pairs = _bench_light(
-            chosen, light, frames, window_size, progress, len(measured), len(cases)
+    so_far: list[BenchRow] = []
+    options = {
+        "frames": frames,
+        "at_least": min(at_least, frames),
+        "window_size": window_size,
+        "reference_samples": reference_samples,
+        "area": area,
+    }
+
+    def finished(case: BenchCase, row: BenchRow) -> None:
+        measured[id(case)] = row
+        so_far.append(row)
+        progress(
+            f"[{len(so_far)}/{len(cases)}] {case.label}: misclassified "
+            f"{100 * row.misclassified:.3f} %, RMSE {row.rmse:.4f} vs {row.reference}, "
+            f"time x{row.ratio_moving:.2f} moving / x{row.ratio_static:.2f} static "
+            f"(frame {row.frame_ms:.1f} ms)"
         )
-        measured.update((id(case), row) for case, row in pairs)
+        if on_row is not None:
+            on_row(list(so_far))
+
+    for light in dict.fromkeys(case.light for case in cases):
+        _bench_light([case for case in cases if case.light == light], light, options, finished)
     return [measured[id(case)] for case in cases]
 
 
@@ -578,34 +711,21 @@ def write_table(rows: list[BenchRow], out: Path, extra: str = "") -> None:
     (out / "bench.md").write_text("\n".join(lines) + "\n" + extra, encoding="utf-8")
 
 
-def append_presets_table(rows: list[BenchRow], out: Path) -> str:
-    """Append the quality presets' rows to ``out/bench.md`` as their own table.
+def append_lines(lines: list[str], out: Path) -> str:
+    """Append Markdown lines (a section: caption and table) to ``out/bench.md``.
 
     Parameters
     ----------
-    rows : list of BenchRow
-        The measurements (rows of technique ``"auto"`` are the presets).
+    lines : list of str
+        The section's lines.
     out : pathlib.Path
-        Folder holding ``bench.md``.
+        Folder holding ``bench.md`` (created if needed).
 
     Returns
     -------
     str
         The section written, to print.
     """
-    lines = [
-        "",
-        "Quality presets (`pl.shadows.enable(quality=...)`), each a point on the frontier:",
-        "",
-        "| light | quality | misclassified | time ratio (light moving) | time ratio (static) |",
-        "| --- | --- | ---: | ---: | ---: |",
-    ]
-    lines += [
-        f"| {r.light} | {r.setting.removeprefix('quality=')} | {100 * r.misclassified:.3f} % "
-        f"| {r.ratio_moving:.2f} | {r.ratio_static:.2f} |"
-        for r in rows
-        if r.technique == "auto"
-    ]
     return _append(out, lines)
 
 
@@ -762,28 +882,94 @@ def pareto_front(rows: list[BenchRow], error: Callable[[BenchRow], float]) -> li
     return front
 
 
-def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], label: str) -> None:
-    markers = {"hard": "s", "pcf": "o", "random": "^", "pcss": "D"}
-    groups = list(dict.fromkeys(f"{r.technique} ({r.light})" for r in rows))
-    colours = dict(zip(groups, itertools.cycle(plt_colours()), strict=False))
+#: Marker of each filter in the frontier plot; cases without a filter get :data:`NO_FILTER`.
+FILTER_MARKERS = {"hard": "s", "pcf": "o", "random": "^", "pcss": "D"}
+#: Marker of cases without a filter (volumes, planar shadows, VTK's own).
+NO_FILTER = "X"
+
+
+def _filter_of(row: BenchRow) -> str | None:
+    return next((f for f in FILTER_MARKERS if f"filter={f}" in row.setting), None)
+
+
+def technique_colours(rows: list[BenchRow]) -> dict[str, tuple]:
+    """Return one colour per technique of ``rows``, the same in every panel of the plot.
+
+    Parameters
+    ----------
+    rows : list of BenchRow
+        The measurements.
+
+    Returns
+    -------
+    dict
+        Technique name to an RGB colour of matplotlib's ``tab10`` palette
+        (repeated if there are more than ten techniques).
+
+    Examples
+    --------
+    >>> from pvshadows.bench import BenchRow, technique_colours
+    >>> rows = [BenchRow(t, "point", "", 0, 0, "hard", 1, 1, 1) for t in ("map", "volume", "map")]
+    >>> list(technique_colours(rows))
+    ['map', 'volume']
+    """
+    import matplotlib.pyplot as plt
+
+    palette = plt.cm.tab10.colors
+    names = dict.fromkeys(row.technique for row in rows)
+    return {name: palette[i % len(palette)] for i, name in enumerate(names)}
+
+
+#: Where a point's label may go, in points from the marker, tried in order.
+_LABEL_OFFSETS = ((5, 3), (5, -10), (-5, 3), (-5, -10), (5, 12), (-5, 12), (5, -19), (-5, -19))
+
+
+def _place_labels(axes, points: list[tuple[float, float, str]]) -> None:
+    """Label points where the label overlaps no other label or marker; leave out what cannot fit."""
+    renderer = axes.figure.canvas.get_renderer()
+    taken = []
+    for x, y, _ in points:
+        centre = axes.transData.transform((x, y))
+        taken.append((centre[0] - 4, centre[1] - 4, centre[0] + 4, centre[1] + 4))
+    box = axes.get_window_extent(renderer)
+    for x, y, text in points:
+        for dx, dy in _LABEL_OFFSETS:
+            label = axes.annotate(
+                text,
+                (x, y),
+                xytext=(dx, dy),
+                textcoords="offset points",
+                fontsize=7,
+                ha="left" if dx > 0 else "right",
+            )
+            extent = label.get_window_extent(renderer)
+            here = (extent.x0, extent.y0, extent.x1, extent.y1)
+            inside = box.x0 <= here[0] and here[2] <= box.x1 and box.y0 <= here[1] <= box.y1
+            if inside and not any(_overlap(here, other) for other in taken):
+                taken.append(here)
+                break
+            label.remove()
+
+
+def _overlap(a: tuple, b: tuple) -> bool:
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], colours: dict) -> None:
     for row in rows:
-        kind = next((f for f in markers if f"filter={f}" in row.setting), None)
+        kind = _filter_of(row)
         axes.scatter(
             row.ratio_moving,
             error(row),
-            color=colours[f"{row.technique} ({row.light})"],
-            marker=markers.get(kind, "X"),
-            s=32,
+            color=colours[row.technique],
+            marker=FILTER_MARKERS.get(kind, NO_FILTER),
+            s=36,
+            edgecolors="black",
+            linewidths=0.4,
             zorder=3,
         )
-        axes.annotate(
-            _short(row.setting),
-            (row.ratio_moving, error(row)),
-            fontsize=5,
-            xytext=(3, 2),
-            textcoords="offset points",
-        )
-    front = pareto_front(rows, error)
+    # Cases where only some actors receive (planar: the ground) judge another picture.
+    front = pareto_front([r for r in rows if "receivers=" not in r.setting] or rows, error)
     # The frontier runs on to the dearest case, so a single exact and cheap case still shows it.
     axes.step(
         [r.ratio_moving for r in front] + [max(r.ratio_moving for r in rows)],
@@ -792,13 +978,7 @@ def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], label
         color="0.5",
         linewidth=1,
         zorder=2,
-        label="frontier",
     )
-    for group, colour in colours.items():
-        axes.scatter([], [], color=colour, label=group)
-    for kind, marker in markers.items():
-        if any(f"filter={kind}" in r.setting for r in rows):
-            axes.scatter([], [], color="0.3", marker=marker, label=f"filter {kind}")
     positive = [error(r) for r in rows if error(r) > 0]
     if len(positive) < len(rows):
         # Exact cases (shadow volumes: no pixel wrong) stay on the plot: linear near zero.
@@ -807,25 +987,47 @@ def _panel(axes, rows: list[BenchRow], error: Callable[[BenchRow], float], label
         axes.set_ylim(bottom=0.0)
     else:
         axes.set_yscale("log")
-    axes.set_xlabel("frame time / plain frame time (light moving)")
-    axes.set_ylabel(label)
     axes.grid(alpha=0.3, which="both")
-    axes.legend(fontsize=6)
+    axes.figure.canvas.draw()
+    _place_labels(axes, [(r.ratio_moving, error(r), _label(r)) for r in front])
 
 
-def plt_colours() -> list:
-    """Return matplotlib's twenty-colour qualitative palette (repeated if there are more groups)."""
-    import matplotlib.pyplot as plt
+def _label(row: BenchRow) -> str:
+    """Return a frontier point's label: its values, and its technique when it has no filter."""
+    short = _short(row.setting)
+    if _filter_of(row) is not None:
+        return short
+    return f"{row.technique.split()[0]} {short}".strip()
 
-    return list(plt.cm.tab20.colors)
+
+def _legend(figure, rows: list[BenchRow], colours: dict, columns: int) -> None:
+    from matplotlib.lines import Line2D
+
+    def marker(shape: str, colour, label: str) -> Line2D:
+        return Line2D(
+            [], [], marker=shape, color=colour, markeredgecolor="black", linestyle="", label=label
+        )
+
+    handles = [marker("o", colour, name) for name, colour in colours.items()]
+    kinds = dict.fromkeys(_filter_of(row) for row in rows)
+    handles += [
+        marker(FILTER_MARKERS[k], "0.7", f"filter {k}") for k in FILTER_MARKERS if k in kinds
+    ]
+    if None in kinds:
+        handles.append(marker(NO_FILTER, "0.7", "no filter (volume, planar, VTK)"))
+    handles.append(Line2D([], [], color="0.5", label="frontier (labelled: its settings)"))
+    figure.legend(handles=handles, loc="lower center", ncol=columns, fontsize=9)
 
 
 def plot_frontier(rows: list[BenchRow], path: Path) -> None:
-    """Plot error against time ratio, with the frontier, for hard and for soft shadows.
+    """Plot error against time ratio, with the frontier, per kind of light.
 
-    Left: every row's share of lit-side pixels misclassified against exact
-    hard visibility. Right: the soft filters' RMSE against the area-light
-    reference. Colour: technique and light; marker: filter; labels: setting values.
+    One row of panels per kind of light. Left: every case's share of
+    lit-side pixels misclassified against exact hard visibility. Right,
+    where the area-light reference was traced: every case's RMSE against
+    it, so soft and hard edges compare on one scale. Colour: technique, the
+    same in every panel; marker: filter; the frontier's points are labelled
+    with their settings' values.
 
     Parameters
     ----------
@@ -839,21 +1041,36 @@ def plot_frontier(rows: list[BenchRow], path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    soft = [r for r in rows if r.reference != "hard"]
+    lights = list(dict.fromkeys(row.light for row in rows))
+    soft = any(not math.isnan(row.rmse_area) for row in rows)
+    columns = 2 if soft else 1
     figure, panels = plt.subplots(
-        1, 2 if soft else 1, figsize=(14 if soft else 8, 6), dpi=120, squeeze=False
+        len(lights),
+        columns,
+        figsize=(6.5 * columns if soft else 8.0, 4.2 * len(lights) + 1.4),
+        dpi=100,
+        squeeze=False,
     )
-    _panel(
-        panels[0, 0],
-        rows,
-        lambda r: 100 * r.misclassified,
-        "lit-side pixels misclassified against ray tracing (%)",
-    )
-    panels[0, 0].set_title("hard shadow class, every technique")
-    if soft:
-        _panel(panels[0, 1], soft, lambda r: r.rmse, "RMSE of visibility against the area light")
-        panels[0, 1].set_title("soft shadows against a many-sample area light")
+    colours = technique_colours(rows)
+    for line, light in enumerate(lights):
+        mine = [row for row in rows if row.light == light]
+        hard = panels[line, 0]
+        _panel(hard, mine, lambda r: 100 * r.misclassified, colours)
+        hard.set_title(f"{light} light: hard shadow class")
+        hard.set_ylabel("lit-side pixels misclassified (%)")
+        if soft:
+            traced = [row for row in mine if not math.isnan(row.rmse_area)]
+            area = panels[line, 1]
+            if traced:
+                _panel(area, traced, lambda r: r.rmse_area, colours)
+                area.set_title(f"{light} light: against an area light")
+                area.set_ylabel("RMSE of visibility")
+            else:
+                area.set_axis_off()
+    for axes in panels[-1]:
+        axes.set_xlabel("frame time / plain frame time (light moving)")
     figure.suptitle("pvshadows: accuracy against cost")
-    figure.tight_layout()
+    _legend(figure, rows, colours, 4 if soft else 3)
+    figure.tight_layout(rect=(0, 1.2 / (4.2 * len(lights) + 1.4), 1, 0.98))
     figure.savefig(path)
     plt.close(figure)

@@ -52,42 +52,45 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _bench(args: argparse.Namespace) -> int:
-    from pvshadows.bench import (
-        BenchCase,
-        all_cases,
-        append_overhead_table,
-        append_planner_table,
-        append_presets_table,
-        append_silhouette_table,
-        cubemap_cases,
-        planar_cases,
-        planner_counts,
-        plot_frontier,
-        preset_cases,
-        run_bench,
-        silhouette_timings,
-        volume_cases,
-        write_table,
-    )
+    from pvshadows import bench
+    from pvshadows.bench_presets import choose_presets, presets_lines, write_presets
+    from pvshadows.bench_progress import ProgressBar
 
-    cases = all_cases()
-    sizes: tuple[int, ...] = (100_000, 1_000_000)
-    if args.quick:
-        cases = cubemap_cases(resolutions=(256,), passes=("single",))
-        cases += volume_cases(extrudes=("gpu",), zmodes=("zpass",))
-        cases.append(BenchCase("map", {"resolution": 256, "filter": "hard"}, "spot"))
-        cases += planar_cases(["spot"])
-        cases += [c for c in preset_cases() if c.light == "point"][:1]
-        sizes = (20_000,)
-    rows = run_bench(cases, frames=args.frames, window_size=args.size)
     out = Path(args.out)
-    write_table(rows, out)
-    plot_frontier(rows, out / "frontier.png")
-    print(append_presets_table(rows, out))
-    print(append_silhouette_table(silhouette_timings(sizes, repeats=1 if args.quick else 3), out))
-    print(append_planner_table(planner_counts(), out))
-    print(append_overhead_table(out, quick=args.quick))
-    print(f"wrote {out / 'bench.csv'}, {out / 'bench.md'} and {out / 'frontier.png'}")
+    cases = bench.quick_cases() if args.quick else bench.all_cases()
+    sizes = (20_000,) if args.quick else (100_000, 1_000_000)
+    bar = ProgressBar(len(cases) + 3)
+    bar.show("setting up; each light's first case also traces its references")
+
+    def measured(rows: list) -> None:
+        bench.write_table(rows, out)
+        bar.step(f"{rows[-1].technique} ({rows[-1].light}) {rows[-1].setting}")
+
+    # The table is rewritten after every case, so an interrupted run keeps what it measured.
+    rows = bench.run_bench(
+        cases,
+        frames=args.frames,
+        window_size=args.size,
+        area=not args.quick,
+        progress=bar.line,
+        on_row=measured,
+    )
+    bench.plot_frontier(rows, out / "frontier.png")
+    picks = choose_presets(rows)
+    presets = write_presets(picks, out)
+    bar.line(bench.append_lines(presets_lines(picks, rows), out))
+    timings = bench.silhouette_timings(sizes, repeats=1 if args.quick else 3, progress=bar.line)
+    bar.step("silhouettes")
+    bar.line(bench.append_silhouette_table(timings, out))
+    bar.line(bench.append_planner_table(bench.planner_counts(), out))
+    bar.step("planner")
+    bar.line(bench.append_overhead_table(out, quick=args.quick))
+    bar.step("overhead")
+    bar.close()
+    print(f"wrote {out / 'bench.csv'}, {out / 'bench.md'}, {out / 'frontier.png'} and {presets}")
+    print(
+        f'apply a preset measured here: pl.shadows.enable(**json.load(open("{presets}"))["draft"])'
+    )
     return 0
 
 
@@ -125,9 +128,19 @@ def parser() -> argparse.ArgumentParser:
     info.set_defaults(run=_info)
     bench = commands.add_parser("bench", help="error and time ratio of every technique and setting")
     bench.add_argument("--out", required=True, help="folder for bench.csv, bench.md, frontier.png")
-    bench.add_argument("--frames", type=int, default=10, help="frames per median (default 10)")
+    bench.add_argument(
+        "--frames",
+        type=int,
+        default=10,
+        help="most frames per median (default 10); fewer (at least 3) once the ratio is steady",
+    )
     bench.add_argument("--size", type=_size, default=(800, 600), help="window size (800x600)")
-    bench.add_argument("--quick", action="store_true", help="one case only, to check it runs")
+    bench.add_argument(
+        "--quick",
+        action="store_true",
+        help="5 cases (hard and PCF cube maps, volumes, a spot map, planar), no area-light "
+        "reference, small silhouette sizes: checks the bench runs, in about a minute",
+    )
     bench.set_defaults(run=_bench)
     return main_parser
 

@@ -107,7 +107,7 @@ class ShadowsComponent:
         quality : {"draft", "balanced", "exact"}, default: "balanced"
             A point on the accuracy-cost frontier that ``pvshadows bench``
             measures: ``"draft"`` (512-texel maps, hard edges), ``"balanced"``
-            (1024-texel maps, filtered edges) or ``"exact"`` (pixel-exact
+            (1024-texel maps, 4-tap PCF edges) or ``"exact"`` (pixel-exact
             shadow volumes; shadow maps of 2048 texels for open casters).
             Settings given explicitly win over the preset's.
         lights : iterable of pyvista.Light, optional

@@ -12,7 +12,9 @@ from pvshadows.scenes import standard_scene
 def render_demo(
     out: str | Path = "shadows.png", *, window_size: tuple[int, int] = (1024, 768)
 ) -> Path:
-    """Render the standard scene lit by a bare bulb, with soft-edged shadows, to a PNG.
+    """Render the standard scene lit by a bare bulb, with the default shadows, to a PNG.
+
+    The shadows are ``pl.shadows.enable()``'s: ``quality="balanced"``, soft edges.
 
     Parameters
     ----------
@@ -46,7 +48,7 @@ def render_demo(
         lighting=False,
         name="bulb",
     )
-    plotter.shadows.enable(filter="pcf", pcf_taps=16, resolution=1024)
+    plotter.shadows.enable()
     plotter.shadows.set_caster(bulb, False)
     path = Path(out)
     path.parent.mkdir(parents=True, exist_ok=True)

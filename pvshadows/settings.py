@@ -30,10 +30,11 @@ EXTRUDE = ("gpu", "cpu")
 ON_OPEN = ("fallback", "raise")
 #: Points on the accuracy-cost frontier that ``enable(quality=...)`` picks.
 QUALITIES = ("draft", "balanced", "exact")
-#: What each quality sets, before the user's own settings.
+#: What each quality sets, before the user's own settings: the settings ``pvshadows bench``
+#: chose for each preset's promise (:mod:`pvshadows.bench_presets`) on the machine that set them.
 QUALITY_PRESETS = {
     "draft": {"resolution": 512, "filter": "hard"},
-    "balanced": {"resolution": 1024, "filter": "pcf", "pcf_taps": 16},
+    "balanced": {"resolution": 1024, "filter": "pcf", "pcf_taps": 4},
     "exact": {"resolution": 2048, "filter": "hard"},
 }
 #: The settings that move a shadow-map lookup off the surface it shades.
@@ -127,7 +128,7 @@ class ShadowSettings:
     quality: str = "balanced"
     resolution: int = 1024
     filter: str = "pcf"
-    pcf_taps: int = 16
+    pcf_taps: int = 4
     samples: int = 32
     filter_radius: float = 2.0
     light_size: float = 0.0

@@ -8,11 +8,12 @@ import pytest
 
 from pvshadows.bench import (
     BenchRow,
+    append_lines,
     append_planner_table,
-    append_presets_table,
     append_silhouette_table,
     write_table,
 )
+from pvshadows.bench_presets import choose_presets, presets_lines
 
 ROOT = Path(__file__).parents[1]
 sys.path.insert(0, str(ROOT / "docs" / "_ext"))
@@ -42,14 +43,25 @@ def _rows():
         row("cubemap", "point", "resolution=256 filter=hard", 0.003),
         row("cubemap", "point", "resolution=256 filter=pcf", 0.002, "area light 0.25"),
         row("volume", "point", "extrude=gpu zmode=zpass", 0.0),
-        row("auto", "point", "quality=draft", 0.001),
+        row("map", "spot", "resolution=256 filter=hard", 0.001),
+    ]
+
+
+def _preset_rows():
+    return [
+        BenchRow(t, light, setting, 0.0005, 0.05, "hard", 1.5, 1.2, 20.0)
+        for light in ("point", "spot", "directional")
+        for t, setting in [
+            ("cubemap" if light == "point" else "map", "resolution=512 filter=pcf pcf_taps=4"),
+            ("volume", "extrude=gpu zmode=auto"),
+        ]
     ]
 
 
 def test_bench_output_becomes_the_accuracy_pages_tables(tmp_path):
     bench = tmp_path / "bench"
     write_table(_rows(), bench)
-    append_presets_table(_rows(), bench)
+    append_lines(presets_lines(choose_presets(_preset_rows()), _preset_rows()), bench)
     timing = {
         "n_triangles": 2000,
         "n_silhouette_edges": 80,
@@ -67,10 +79,10 @@ def test_bench_output_becomes_the_accuracy_pages_tables(tmp_path):
     pvshadows_docs.write_bench_rst(bench, out, "measured in a test")
     table = (out / "bench_table.csv").read_text(encoding="utf-8").splitlines()
     assert len(table) == 1 + len(_rows())
-    assert table[3].startswith('volume,point,"extrude=gpu, zmode=zpass",0.000,')
+    assert table[3].startswith('volume (point),"extrude=gpu, zmode=zpass",0.000,')
     presets = (out / "bench_presets.rst").read_text(encoding="utf-8")
-    assert presets.startswith(".. list-table:: Quality presets (``pl.shadows.enable(")
-    assert "     - draft" in presets
+    assert presets.startswith(".. list-table:: Quality presets chosen by this bench (``presets")
+    assert "   * - draft" in presets and "   * - exact" in presets
     assert "2000" in (out / "bench_silhouettes.rst").read_text(encoding="utf-8")
     assert "8 spots" in (out / "bench_planner.rst").read_text(encoding="utf-8")
     assert (out / "bench_more.rst").read_text(encoding="utf-8") == ""
@@ -85,3 +97,13 @@ def test_gallery_order_puts_the_named_scripts_first():
     order = gallery_support.GalleryOrder(str(ROOT / "examples"))
     names = ["zzz_new.py", "accuracy_vs_time.py", "bulb_room.py", "aaa_new.py"]
     assert sorted(names, key=order) == ["bulb_room.py", "accuracy_vs_time.py", *sorted(names[::3])]
+
+
+def test_ci_runs_the_readme_commands():
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    commands = readme.split("```bash\n", 1)[1].split("```", 1)[0].splitlines()
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8").splitlines()
+    assert "python -m pytest -n auto" in commands[1]  # the suite runs on every core
+    assert commands[:2] == ci[-3:-1]
+    # CI's docs build is the README's, with warnings failing it.
+    assert ci[-1] == commands[2].replace("sphinx-build -b", "sphinx-build -W --keep-going -b")

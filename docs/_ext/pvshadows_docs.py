@@ -2,6 +2,7 @@
 
 When the builder starts it
 
+- renders ``pvshadows demo`` into ``docs/_generated/demo.png`` for the front page;
 - runs ``pvshadows bench`` into ``docs/_generated/bench`` (``bench.csv``,
   ``bench.md``, ``frontier.png``) and turns its tables into reST for the
   "Accuracy and cost" page;
@@ -82,16 +83,16 @@ def run_bench(out: Path, mode: str) -> str:
 
 
 def formatted_csv(source: Path, target: Path) -> None:
-    """Write ``bench.csv`` with readable numbers for the ``csv-table`` directive."""
+    """Write ``bench.csv`` with readable numbers and few columns for the ``csv-table`` directive."""
     with open(source, newline="", encoding="utf-8") as handle:
         rows = list(csv.DictReader(handle))
     header = [
-        "technique",
-        "light",
+        "technique (light)",
         "setting",
         "misclassified (%)",
         "RMSE",
         "RMSE against",
+        "RMSE, area light",
         "time ratio, light moving",
         "time ratio, static",
         "frame (ms)",
@@ -100,14 +101,15 @@ def formatted_csv(source: Path, target: Path) -> None:
         writer = csv.writer(handle)
         writer.writerow(header)
         for row in rows:
+            area = float(row.get("rmse_area") or "nan")
             writer.writerow(
                 [
-                    row["technique"],
-                    row["light"],
+                    f"{row['technique']} ({row['light']})",
                     row["setting"].replace(" ", ", "),
                     f"{100 * float(row['misclassified']):.3f}",
                     f"{float(row['rmse']):.4f}",
                     row["reference"],
+                    "—" if area != area else f"{area:.4f}",
                     f"{float(row['ratio_moving']):.2f}",
                     f"{float(row['ratio_static']):.2f}",
                     f"{float(row['frame_ms']):.1f}",
@@ -159,7 +161,7 @@ def list_table(caption: str, rows: list[list[str]]) -> str:
 
 #: Which generated file each table of ``bench.md`` goes to, by its first header cell.
 SECTIONS = {
-    "light": "presets",
+    "quality": "presets",
     "triangles": "silhouettes",
     "scene": "planner",
     "overhead scene": "overhead",
@@ -197,6 +199,7 @@ TECHNIQUE_WORDS = {
 
 def write_package_tables(out: Path) -> None:
     """Write the techniques x lights and the quality presets tables, read from the package."""
+    from pvshadows.bench_presets import PROMISES
     from pvshadows.lights import LightKind
     from pvshadows.planner import AUTO_TECHNIQUE, SERVES
     from pvshadows.settings import QUALITY_PRESETS
@@ -218,6 +221,10 @@ def write_package_tables(out: Path) -> None:
         )
     text = list_table("What each quality sets (pvshadows.settings.QUALITY_PRESETS)", rows)
     (out / "presets.rst").write_text(text, encoding="utf-8")
+    promises = [["quality", "promise (for every kind of light)"]]
+    promises += [[f"``{quality}``", words] for quality, words in PROMISES.items()]
+    text = list_table("What each quality promises (pvshadows.bench_presets.PROMISES)", promises)
+    (out / "promises.rst").write_text(text, encoding="utf-8")
     write_bench_constants(out)
 
 
@@ -249,6 +256,10 @@ def generate(app) -> None:
     bench.mkdir(parents=True, exist_ok=True)
     how = run_bench(bench, mode)
     write_bench_rst(bench, out, how)
+    demo = out / "demo.png"
+    if not (mode == "reuse" and demo.exists()):
+        command = [sys.executable, "-m", "pvshadows", "demo", "--out", str(demo)]
+        _run([*command, "--size", "960x600"], "the demo picture")
     figures = out / "how_it_works"
     if not (mode == "reuse" and (figures / "frame_passes.png").exists()):
         _run([sys.executable, str(HERE / "how_it_works.py"), str(figures)], "How it works")
