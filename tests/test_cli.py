@@ -58,8 +58,8 @@ def test_bench_writes_table_and_frontier(tmp_path):
     assert result.returncode == 0, result.stderr
     out = result.stdout
     assert "[5/5]" in out
-    # The progress bar, on stderr: cases, then the silhouette and planner sections.
-    assert "bench [" in result.stderr and "7/7" in result.stderr
+    # The progress bar, on stderr: cases, then the silhouette, planner and overhead sections.
+    assert "bench [" in result.stderr and "8/8" in result.stderr
     rows = list(csv.DictReader(open(tmp_path / "bench.csv")))
     assert [r["setting"] for r in rows] == [
         "resolution=256 filter=hard",
