@@ -16,6 +16,7 @@ Examples
 from __future__ import annotations
 
 import importlib
+from typing import Any
 
 _MODULES = (
     "vtkCommonCore",
@@ -27,7 +28,7 @@ _MODULES = (
 )
 
 
-def __getattr__(name: str) -> object:
+def __getattr__(name: str) -> Any:
     """Return VTK's ``name``, from the first of :data:`_MODULES` that has it, else from ``vtk``.
 
     Parameters
@@ -37,7 +38,7 @@ def __getattr__(name: str) -> object:
 
     Returns
     -------
-    object
+    Any
         It, kept in this module so the next lookup is a plain attribute read.
     """
     if name.startswith("__"):
