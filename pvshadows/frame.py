@@ -25,6 +25,7 @@ from pvshadows.shading import (
     ShaderEdits,
     bystander_replacements,
     receiver_replacements,
+    receiver_uniforms,
 )
 from pvshadows.snapshot import SceneReader, Snapshot
 from pvshadows.techniques import TECHNIQUE_CLASSES
@@ -58,6 +59,7 @@ class RendererShadows:
             renderer.AddObserver(vtk.vtkCommand.EndEvent, self._on_end),
         ]
         self._edits: dict[str, ShaderEdits] = {}
+        self._warned: set[tuple[str, str]] = set()
         self._window: vtk.vtkOpenGLRenderWindow | None = None
         self._timer: PassTimer | None = None
         self._buffers: ActorBuffers | None = None
@@ -153,8 +155,9 @@ class RendererShadows:
         for state in snapshot.receivers:
             edits = self._edits_of(state.actor)
             key = vtk_id(state.actor)
-            edits.apply(receiver_replacements(state.actor, [s.for_actor(key) for s in shadings]))
-            edits.set_uniforms(uniforms)
+            shown = [s.for_actor(key) for s in shadings]
+            edits.apply(receiver_replacements(state.actor, shown))
+            edits.set_uniforms(receiver_uniforms(shown, uniforms))
             touched.add(vtk_id(state.actor))
         for actor in snapshot.bystanders:
             edits = self._edits_of(actor)
@@ -186,6 +189,19 @@ class RendererShadows:
         self._active = []
         if self._timer is not None:
             self._timer.collect()
+        self._report_receivers()
+
+    def _report_receivers(self) -> None:
+        """Name in ``last_frame`` (and warn once) each receiver whose edits failed this frame."""
+        for key, edits in self._edits.items():
+            problem = edits.problem
+            if problem is None:
+                continue
+            name = getattr(edits.actor, "name", None) or key
+            self.last_frame.receivers.append(f"{name}: {problem}")
+            if (key, problem) not in self._warned:
+                self._warned.add((key, problem))
+                warnings.warn(f"pvshadows: receiver {name}: {problem}", stacklevel=1)
 
     def _clear_edits(self) -> None:
         for edits in self._edits.values():

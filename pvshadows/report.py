@@ -83,6 +83,9 @@ class FrameReport:
     ----------
     lights : list of LightReport
         One entry per light of the renderer.
+    receivers : list of str
+        Receivers that show fewer shadows than asked, each with why (its
+        shader variant refused pvshadows' edits, or they did not land).
 
     Examples
     --------
@@ -94,6 +97,7 @@ class FrameReport:
     """
 
     lights: list[LightReport] = field(default_factory=list)
+    receivers: list[str] = field(default_factory=list)
 
     @property
     def passes_run(self) -> int:
@@ -106,6 +110,5 @@ class FrameReport:
         return sum(p.ms or 0.0 for light in self.lights for p in light.passes)
 
     def __str__(self) -> str:
-        if not self.lights:
-            return "no lights"
-        return "\n".join(str(light) for light in self.lights)
+        lines = [str(light) for light in self.lights] or ["no lights"]
+        return "\n".join(lines + [f"receiver {note}" for note in self.receivers])

@@ -21,7 +21,13 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.programs import glsl_source
-from pvshadows.glsl_library import shadow_functions
+from pvshadows.glsl_library import (
+    MapLookup,
+    group_samplers,
+    group_uniforms,
+    shadow_functions,
+)
+from pvshadows.landing import LandingCheck
 from pvshadows.transforms import column_major
 
 #: Name of the custom uniform that switches a frame to showing one light's visibility.
@@ -30,9 +36,9 @@ PROBE_UNIFORM = "pvsProbeLight"
 _MAIN = "void main()"
 _VIEW_POSITION = "vec4 vertexVC = vertexVCVSOutput;"
 _PROBE_ANCHOR = "//VTK::Picking::Impl"
-_FACET_NORMAL = (
-    "\n  vec3 pvsFacetVC = cross(dFdx(vertexVC.xyz), dFdy(vertexVC.xyz));\n  float pvsProbe = 0.0;"
-)
+_FACET_NORMAL = "\n  pvsFacetVC = cross(dFdx(vertexVC.xyz), dFdy(vertexVC.xyz));"
+_NORMAL = "pvsGeometricNormal(pvsFacetVC, normalVCVSOutput)"
+_LOOKUP_MAPS = f"pvsLookupMaps(vertexVC.xyz, {_NORMAL});\n  "
 
 
 @dataclass(frozen=True)
@@ -50,9 +56,9 @@ class LightShading:
         camera).
     samplers : Mapping[str, str]
         Uniform name to sampler type, for each texture the expression reads.
-    needs : tuple of tuple
-        ``(kind, filter)`` pairs of the shadow-map lookups the expression
-        calls (see :mod:`pvshadows.glsl_library`).
+    needs : tuple of MapLookup
+        The shadow-map lookups whose visibilities the expression reads
+        (see :mod:`pvshadows.glsl_library`).
     sources : tuple of str
         Other files of ``glsl/`` that define functions the expression calls.
     defines : tuple of str
@@ -67,7 +73,7 @@ class LightShading:
     vtk_index: int
     visibility: str
     samplers: Mapping[str, str] = field(default_factory=dict)
-    needs: tuple[tuple[str, str], ...] = ()
+    needs: tuple[MapLookup, ...] = ()
     sources: tuple[str, ...] = ()
     defines: tuple[str, ...] = ()
     only_on: frozenset[str] | None = None
@@ -107,13 +113,11 @@ def _uses_pbr(actor: vtk.vtkActor) -> bool:
     return actor.GetProperty().GetInterpolation() == vtk.VTK_PBR
 
 
-def _light_hooks(light: LightShading, pbr: bool) -> list[tuple[str, str]]:
+def _light_hooks(light: LightShading, pbr: bool, lookup_maps: bool) -> list[tuple[str, str]]:
     i = light.vtk_index
-    visibility = light.visibility.replace(
-        "pvsNormalVC", "pvsGeometricNormal(pvsFacetVC, normalVCVSOutput)"
-    )
+    visibility = light.visibility.replace("pvsNormalVC", _NORMAL)
     compute = (
-        f"float pvsVisibility{i} = {visibility};\n"
+        (_LOOKUP_MAPS if lookup_maps else "") + f"float pvsVisibility{i} = {visibility};\n"
         f"  if ({PROBE_UNIFORM} == {i}) {{ pvsProbe = pvsVisibility{i}; }}\n"
     )
     if pbr:
@@ -161,13 +165,14 @@ def receiver_replacements(
     >>> any("pvsVisibility0" in new for _, new in edits)
     True
     """
-    lights = list(lights)
+    lights = sorted(lights, key=lambda light: light.vtk_index)
     pbr = _uses_pbr(actor)
     sources = dict.fromkeys(source for light in lights for source in light.sources)
     defines = dict.fromkeys(define for light in lights for define in light.defines)
-    needs = dict.fromkeys(need for light in lights for need in light.needs)
+    lookups = [lookup for light in lights for lookup in light.needs]
     functions = "".join(f"#define {name}\n" for name in defines)
-    functions += glsl_source("receiver_normal.glsl") + shadow_functions(needs)
+    functions += glsl_source("receiver_state.glsl") + glsl_source("receiver_normal.glsl")
+    functions += shadow_functions(lookups)
     functions += "".join(glsl_source(source) for source in sources)
     edits = [
         (_MAIN, f"{functions}\n{_MAIN}"),
@@ -177,13 +182,42 @@ def receiver_replacements(
             _probe_output("vec4(pvsProbe, 1.0, 0.0, 1.0)"),
         ),
     ]
+    first_lookup = min((lookup.vtk_index for lookup in lookups), default=None)
+    samplers = {name: (kind, None) for light in lights for name, kind in light.samplers.items()}
+    samplers.update(group_samplers(lookups))
     for light in lights:
-        edits.extend(_light_hooks(light, pbr))
-        edits.extend(
-            (f"uniform int {name};", f"uniform {kind} {name};")
-            for name, kind in light.samplers.items()
-        )
+        edits.extend(_light_hooks(light, pbr, light.vtk_index == first_lookup))
+    for name, (kind, length) in samplers.items():
+        size = "" if length is None else f"[{length}]"
+        edits.append((f"uniform int {name}{size};", f"uniform {kind} {name}{size};"))
     return edits
+
+
+def receiver_uniforms(
+    lights: Iterable[LightShading], uniforms: Mapping[str, object]
+) -> dict[str, object]:
+    """Return the uniforms of a receiver that shows ``lights``.
+
+    Parameters
+    ----------
+    lights : iterable of LightShading
+        The shadowed lights, as :func:`receiver_replacements` got them.
+    uniforms : Mapping
+        Every light's uniforms by name, as the techniques set them.
+
+    Returns
+    -------
+    dict
+        The same, with the map lookups' own uniforms packed into their
+        groups' arrays (:func:`pvshadows.glsl_library.group_uniforms`).
+
+    Examples
+    --------
+    >>> from pvshadows.shading import LightShading, receiver_uniforms
+    >>> receiver_uniforms([LightShading(0, "1.0")], {"pvsProbeLight": -1})
+    {'pvsProbeLight': -1}
+    """
+    return group_uniforms([lookup for light in lights for lookup in light.needs], uniforms)
 
 
 def bystander_replacements() -> list[tuple[str, str]]:
@@ -218,9 +252,11 @@ def set_uniform(uniforms: vtk.vtkUniforms, name: str, value: object) -> None:
         A shader property's fragment custom uniforms.
     name : str
         Uniform name.
-    value : int, float, sequence of 4 floats, or (4, 4) array
+    value : int, float, list of int, sequence of 4 floats, (4, 4) or (n, 4, 4) array
         ``int`` sets an ``int`` (also a sampler's texture unit), ``float`` a
-        ``float``, four numbers a ``vec4`` and a 4x4 array a ``mat4``.
+        ``float``, a list of ``int`` an ``int[n]`` (also a sampler array's
+        units), four numbers a ``vec4``, a 4x4 array a ``mat4`` and an
+        ``(n, 4, 4)`` array a ``mat4[n]``.
 
     Examples
     --------
@@ -233,12 +269,16 @@ def set_uniform(uniforms: vtk.vtkUniforms, name: str, value: object) -> None:
     """
     if isinstance(value, bool | int | np.integer):
         uniforms.SetUniformi(name, int(value))
+    elif isinstance(value, list) and all(isinstance(v, int) for v in value):
+        uniforms.SetUniform1iv(name, len(value), value)
     elif isinstance(value, float | np.floating):
         uniforms.SetUniformf(name, float(value))
     else:
         array = np.asarray(value, dtype=np.float64)
         if array.shape == (4, 4):
             uniforms.SetUniformMatrix4x4(name, column_major(array).tolist())
+        elif array.ndim == 3 and array.shape[1:] == (4, 4):
+            uniforms.SetUniformMatrix4x4v(name, len(array), column_major(array).tolist())
         elif array.shape == (4,):
             uniforms.SetUniform4f(name, array.astype(np.float32).tolist())
         else:
@@ -263,23 +303,58 @@ class ShaderEdits:
         self.actor = actor
         self._edits: list[tuple[str, str]] = []
         self._uniforms: set[str] = set()
+        self._refused: list[tuple[str, str]] | None = None
+        #: Checks each program VTK compiles for the actor against the edits.
+        self.check = LandingCheck(actor)
 
     def apply(self, edits: list[tuple[str, str]]) -> None:
         """Make the actor's pvshadows edits exactly ``edits`` (a no-op when unchanged).
+
+        Edits with which VTK could not compile the actor's shader are not
+        applied again: the actor stays as VTK built it (unshadowed) and
+        :attr:`problem` says so, until the edits change.
 
         Parameters
         ----------
         edits : list of tuple
             ``(original, replacement)`` pairs.
         """
-        if edits == self._edits:
-            return
-        prop = self.actor.GetShaderProperty()
-        for original, _ in self._edits:
-            prop.ClearFragmentShaderReplacement(original, False)
-        for original, replacement in edits:
-            prop.AddFragmentShaderReplacement(original, False, replacement, False)
-        self._edits = list(edits)
+        if self.check.failed:
+            self._refused = self._edits
+        wanted = [] if edits == self._refused else edits
+        if wanted != self._edits:
+            prop = self.actor.GetShaderProperty()
+            for original, _ in self._edits:
+                prop.ClearFragmentShaderReplacement(original, False)
+            for original, replacement in wanted:
+                prop.AddFragmentShaderReplacement(original, False, replacement, False)
+            self._edits = list(wanted)
+        self.check.expect(self._edits)
+
+    @property
+    def problem(self) -> str | None:
+        """Why the actor shows fewer shadows than asked, or ``None``.
+
+        Returns
+        -------
+        str or None
+            The actor's shader variant refused the edits (it is drawn
+            unshadowed, exactly as VTK built it), or some required edits did
+            not land in the program VTK compiled (for example a VTK version
+            whose generated lighting code changed).
+        """
+        if self._refused and not self._edits:
+            return (
+                "its shader variant does not compile with pvshadows' edits; drawn "
+                "unshadowed, exactly as VTK built it"
+            )
+        if self.check.missing:
+            return (
+                "pvshadows' shader edits did not land in the program VTK compiled "
+                f"(VTK's generated code differs at: {'; '.join(self.check.missing)}); "
+                "the lights they shadow are drawn unshadowed on it"
+            )
+        return None
 
     def set_uniforms(self, values: Mapping[str, object]) -> None:
         """Set custom uniforms, and remove the ones set before but absent now.
@@ -310,6 +385,7 @@ class ShaderEdits:
         self._uniforms.add(PROBE_UNIFORM)
 
     def remove(self) -> None:
-        """Take every pvshadows edit and uniform off the actor."""
+        """Take every pvshadows edit and uniform off the actor, and stop checking it."""
         self.apply([])
         self.set_uniforms({})
+        self.check.release()
