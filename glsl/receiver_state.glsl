@@ -1,7 +1,9 @@
 // Added to a receiver's fragment shader before main(), which every variant
-// VTK builds has: the values the other edits share live here, so that each
-// edit compiles on its own, whichever of the others found its place in the
-// variant VTK generated (lines and points lack some of a surface's code).
+// VTK builds has: the values the other edits share live here (with each
+// shadowed light's pvsVisibility<i>, 1 until its diffuse or radiance hook
+// sets it), so that each edit compiles on its own, whichever of the others
+// found its place in the variant VTK generated (lines and points lack some of
+// a surface's code).
 
 // The visibility the probe shows (pvsProbeLight picks the light).
 float pvsProbe = 0.0;

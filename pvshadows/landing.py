@@ -162,8 +162,8 @@ class LandingCheck:
 
     @vtk.calldata_type(vtk.VTK_OBJECT)
     def _on_program(self, mapper: vtk.vtkMapper, event: str, program: vtk.vtkShaderProgram) -> None:
-        if program is None or not self._edits:
-            return
+        if program is None or not self._edits or self.failed:
+            return  # after a failed compile VTK draws with its previous program
         key = program.GetHash()
         if key in self._seen:
             return

@@ -117,7 +117,7 @@ def _light_hooks(light: LightShading, pbr: bool, lookup_maps: bool) -> list[tupl
     i = light.vtk_index
     visibility = light.visibility.replace("pvsNormalVC", _NORMAL)
     compute = (
-        (_LOOKUP_MAPS if lookup_maps else "") + f"float pvsVisibility{i} = {visibility};\n"
+        (_LOOKUP_MAPS if lookup_maps else "") + f"pvsVisibility{i} = {visibility};\n"
         f"  if ({PROBE_UNIFORM} == {i}) {{ pvsProbe = pvsVisibility{i}; }}\n"
     )
     if pbr:
@@ -172,6 +172,7 @@ def receiver_replacements(
     lookups = [lookup for light in lights for lookup in light.needs]
     functions = "".join(f"#define {name}\n" for name in defines)
     functions += glsl_source("receiver_state.glsl") + glsl_source("receiver_normal.glsl")
+    functions += "".join(f"float pvsVisibility{light.vtk_index} = 1.0;\n" for light in lights)
     functions += shadow_functions(lookups)
     functions += "".join(glsl_source(source) for source in sources)
     edits = [

@@ -13,7 +13,9 @@ import pytest
 import pyvista as pv
 from pyvista.core.utilities.observers import VtkErrorCatcher
 
+import pvshadows.shading
 from conftest import draw, point_light
+from pvshadows.scene import vtk_id
 
 SIZE = (240, 180)
 
@@ -101,10 +103,10 @@ def _scene(lights=True):
 
 def _drawn(pl, actor):
     """Pixels that ``actor`` covers in the current frame (where hiding it changes the image)."""
-    shown = draw(pl).astype(int)
     actor.SetVisibility(False)
     hidden = draw(pl).astype(int)
     actor.SetVisibility(True)
+    shown = draw(pl).astype(int)
     return np.abs(shown - hidden).max(axis=-1) > 8
 
 
@@ -118,7 +120,8 @@ def _check_variant(pl, actor):
     kept = (after & before).sum() / before.sum()
     assert kept > 0.9, f"only {kept:.0%} of the variant's pixels are drawn with shadows on"
     assert pl.shadows.last_frame.receivers == []
-    edits = [e for r in pl.shadows._renderers for e in r._edits.values() if e.actor is actor]
+    key = vtk_id(actor)
+    edits = [r._edits[key] for r in pl.shadows._renderers if key in r._edits]
     assert edits and edits[0].check.checked >= 1  # its compiled program was read and checked
 
 
@@ -134,7 +137,7 @@ def test_variant_compiles_and_is_drawn(variant):
 
 def test_plotter_without_lights():
     pl = _scene(lights=False)
-    actor = pl.add_mesh(pv.Sphere(radius=0.6, center=(0, 0, 1.2)), color="tan", ambient=1.0)
+    actor = pl.add_mesh(pv.Sphere(radius=0.6, center=(0, 0, 1.2)), color="blue")
     before = _drawn(pl, actor)
     pl.shadows.enable()
     with VtkErrorCatcher() as catcher:
@@ -142,3 +145,37 @@ def test_plotter_without_lights():
     assert not catcher.events, catcher.events[0]
     assert (after & before).sum() / before.sum() > 0.9
     assert pl.shadows.last_frame.receivers == []
+
+
+def test_edit_that_does_not_land_is_reported(monkeypatch):
+    # As if VTK's generated code had changed: the light hooks look for text VTK no longer writes.
+    hooks = pvshadows.shading._light_hooks
+
+    def reworded(*args):
+        return [(original.replace("(df * ", "(df*"), new) for original, new in hooks(*args)]
+
+    monkeypatch.setattr(pvshadows.shading, "_light_hooks", reworded)
+    pl = _scene()
+    pl.add_mesh(pv.Sphere(radius=0.6, center=(0, 0, 1.2)), color="tan")
+    draw(pl)
+    with pytest.warns(UserWarning, match="did not land"):
+        pl.shadows.enable()
+        draw(pl)
+    notes = pl.shadows.last_frame.receivers
+    assert len(notes) == 2  # the plane and the sphere
+    assert all("diffuse += (df*lightColor" in note for note in notes)
+
+
+def test_variant_that_does_not_compile_is_left_as_vtk_built_it(monkeypatch):
+    monkeypatch.setattr(pvshadows.shading, "_FACET_NORMAL", "\n  pvsFacetVC = ;")
+    pl = _scene()
+    pl.add_mesh(pv.Sphere(radius=0.6, center=(0, 0, 1.2)), color="tan")
+    plain = draw(pl).astype(int)
+    pl.shadows.enable()
+    with VtkErrorCatcher(), pytest.warns(UserWarning, match="does not compile"):
+        draw(pl)  # the failed compile is noticed here
+        drawn = [draw(pl).astype(int) for _ in range(2)]
+    for image in drawn:
+        assert np.abs(image - plain).max() <= 2  # unshadowed, exactly as VTK draws it
+    notes = pl.shadows.last_frame.receivers
+    assert len(notes) == 2 and all("does not compile" in note for note in notes)
