@@ -64,6 +64,9 @@ def missing_edits(edits: Sequence[tuple[str, str]], source: str) -> list[str]:
     >>> missing_edits([("diffuse += (df * lightColor1);", "shadowed")], source)
     []
     """
+    # With a geometry shader (wide lines, edges) VTK renames the fragment
+    # shader's inputs from ...VSOutput to ...GSOutput after the edits.
+    source = source.replace("GSOutput", "VSOutput")
     missing = []
     for original, replacement in edits:
         if original in OPTIONAL:
