@@ -217,7 +217,7 @@ def shadow_functions(lookups: Iterable[MapLookup]) -> str:
     >>> code = shadow_functions([MapLookup("cube", "pcf", 0, 4), MapLookup("cube", "pcf", 3, 2)])
     >>> "#define PVS_WITH_PCF" in code, "#define PVS_WITH_PCSS" in code
     (True, False)
-    >>> code.count("void pvsCubePcfLookup(")
+    >>> code.count("#define PVS_GROUP_LOOKUP pvsCubePcfLookup")  # one lookup function for both
     1
     """
     groups = _groups(lookups)
