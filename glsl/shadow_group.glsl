@@ -10,7 +10,9 @@
 // still defined); before this file the receiver defines:
 //
 //   PVS_GROUP_CUBE, _SPOT or _SUN          the kind of map
-//   PVS_GROUP_LIT, _HARD, _PCF, _RANDOM or _PCSS   the filter
+//   PVS_GROUP_LIT, _HARD, _PCF, _RANDOM or _PCSS   the filter (hard: PCF with
+//                            one tap, a loop too: straight-line compares
+//                            cost LLVM more to compile than loops do)
 //   PVS_GROUP_SIZE           lights in the group (sizes the uniform arrays)
 //   PVS_GROUP_LOOKUP         name of the function defined here
 //   PVS_GROUP_RECEIVER       the kind's receiver function
@@ -38,9 +40,7 @@
 
 #if defined(PVS_GROUP_LIT)
 #define PVS_GROUP_FILTER(j, r) PVS_LIT(PVS_GROUP_MAP(j), r)
-#elif defined(PVS_GROUP_HARD)
-#define PVS_GROUP_FILTER(j, r) PVS_HARD(PVS_GROUP_DEPTH[j], PVS_GROUP_MAP(j), r)
-#elif defined(PVS_GROUP_PCF)
+#elif defined(PVS_GROUP_HARD) || defined(PVS_GROUP_PCF)
 #define PVS_GROUP_FILTER(j, r) PVS_PCF(PVS_GROUP_DEPTH[j], PVS_GROUP_MAP(j), r, PVS_GROUP_TAPS(j))
 #elif defined(PVS_GROUP_RANDOM)
 #define PVS_GROUP_FILTER(j, r) PVS_RANDOM(PVS_GROUP_DEPTH[j], PVS_GROUP_MAP(j), r, PVS_GROUP_OFFSETS[j], PVS_GROUP_TAPS(j), PVS_GROUP_PACK[j][3].x)

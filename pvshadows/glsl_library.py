@@ -168,7 +168,8 @@ def _group_instance(group: str, lookups: list[MapLookup]) -> str:
 
 
 def _kind_instance(kind: str, groups: dict[str, list[MapLookup]]) -> str:
-    filters = {lookups[0].filter for lookups in groups.values()}
+    # hard is read as one-tap PCF (shadow_group.glsl)
+    filters = {lookups[0].filter.replace("hard", "pcf") for lookups in groups.values()}
     names = {k: v for k, v in KINDS[kind].items() if k != "file"}
     names.update({f"PVS_{f.upper()}": filter_function(kind, f) for f in FILTERS})
     names.update({f"PVS_WITH_{f.upper()}": "" for f in filters})

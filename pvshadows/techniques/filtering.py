@@ -61,7 +61,7 @@ def lookup_shading(
     elif settings.filter in ("random", "pcss"):
         lookup = MapLookup(kind, settings.filter, vtk_index, settings.samples)
     else:
-        lookup = MapLookup(kind, settings.filter, vtk_index)
+        lookup = MapLookup(kind, "hard", vtk_index, 1)
     return LightShading(vtk_index, lookup.visibility_name, needs=(lookup,))
 
 
