@@ -10,9 +10,10 @@
 //   PVS_TEXEL         (map, kind, receiver, frame, t) -> visibility of the texel holding t
 //   PVS_TEXEL_DEPTH   (raw, kind, receiver, frame, t, out receiverDepth) -> its stored depth
 //   PVS_SEARCH_RADIUS / PVS_PENUMBRA_RADIUS   in texels, for PCSS
-//   PVS_LIT, PVS_HARD, PVS_PCF, PVS_RANDOM, PVS_PCSS   names of the filter functions
-//   PVS_BOX                                            name of the box both hard and pcf use
-//   PVS_WITH_LIT, PVS_WITH_HARD, ...                   which to compile
+//   PVS_LIT, PVS_PCF, PVS_RANDOM, PVS_PCSS   names of the filter functions (hard is
+//                                            PCF's 2 x 2 box cut at one half: shadow_group.glsl)
+//   PVS_BOX                                  name of the box PCF sums
+//   PVS_WITH_LIT, PVS_WITH_PCF, ...          which to compile
 //
 // Every compare reads one texel at its centre against the receiver's own
 // tangent plane along the ray through that centre (see PvsTexelFrame), so no
@@ -28,7 +29,7 @@ float PVS_LIT(PVS_MAP kind, PvsReceiver r)
 }
 #endif
 
-#if defined(PVS_WITH_HARD) || defined(PVS_WITH_PCF)
+#ifdef PVS_WITH_PCF
 // What side x side bilinear compares one texel apart would return, from the
 // (side + 1)^2 texels they touch, each compared at its own centre: a box of
 // side texels centred on the receiver, its first and last texels weighted by
@@ -50,18 +51,6 @@ float PVS_BOX(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r, int side)
     }
   }
   return sum / float(side * side);
-}
-#endif
-
-#ifdef PVS_WITH_HARD
-// The 3 x 3 texels round the receiver, each compared at its centre, weighted
-// as two by two bilinear compares would weight them, and cut at one half: a
-// hard edge through the middle of the texels on either side of it, not along
-// the texels' own outlines (a staircase that, seen up close, is many pixels
-// wide), and still sharp.
-float PVS_HARD(PVS_COMPARE_MAP depthMap, PVS_MAP kind, PvsReceiver r)
-{
-  return r.lit == 0.0 ? 0.0 : step(0.5, PVS_BOX(depthMap, kind, r, 2));
 }
 #endif
 

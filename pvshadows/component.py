@@ -391,6 +391,7 @@ class ShadowsComponent:
                 report.lights.append(
                     replace(light, subplot=self._subplot(number)) if several else light
                 )
+            report.receivers.extend(renderer.last_frame.receivers)
         return report
 
     def visibility(self, light: vtk.vtkLight | None = None, *, scale: int = 1) -> np.ndarray:

@@ -60,6 +60,7 @@ class RendererShadows:
             renderer.AddObserver(vtk.vtkCommand.EndEvent, self._on_end),
         ]
         self._edits = ReceiverEdits()
+        self._warned: set[tuple[str, str]] = set()
         #: What each spot light reached, kept between frames (``reach.tests`` counts cone tests).
         self.reach = ReachCache()
         self._window: vtk.vtkOpenGLRenderWindow | None = None
@@ -264,6 +265,16 @@ class RendererShadows:
         self._active = []
         if self._timer is not None:
             self._timer.collect()
+        self._report_receivers()
+
+    def _report_receivers(self) -> None:
+        """Name in ``last_frame`` (and warn once) each receiver whose edits failed this frame."""
+        for key, (actor, problem) in self._edits.problems().items():
+            name = self._reader.name_of(actor)
+            self.last_frame.receivers.append(f"{name}: {problem}")
+            if (key, problem) not in self._warned:
+                self._warned.add((key, problem))
+                warnings.warn(f"pvshadows: receiver {name}: {problem}", stacklevel=1)
 
     def _clear_edits(self) -> None:
         self._edits.clear()

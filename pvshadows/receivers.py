@@ -1,13 +1,21 @@
 """The shader edits and uniforms of every actor of one renderer, kept up to date cheaply.
 
 Each frame the receivers need the edits of the lights that shadow them and
-the uniforms those lights' techniques return; bystanders need only the probe
-switch. Both are sent to VTK only where they changed: replacements are
-rebuilt for an actor only when its state or the lights' shadings changed
-(and built once per distinct set of lights, not once per actor), and a
-uniform whose value did not change is not set again. So a frame where only
-the camera moved sets the camera-dependent uniforms and nothing else, and a
-frame where nothing changed makes no VTK call here at all.
+the uniforms those lights' techniques return (packed into the arrays of each
+group of lights, :func:`pvshadows.shading.receiver_uniforms`); bystanders
+need only the probe switch. Both are sent to VTK only where they changed:
+replacements and packed uniforms are worked out once per distinct set of
+lights an actor shows (its *signature*), not once per actor; replacements are
+rebuilt for an actor only when its state, its signature or the lights'
+shadings changed; and a uniform whose value did not change is not set again.
+So a frame where only the camera moved sets the camera-dependent uniforms and
+nothing else, and a frame where nothing changed makes no VTK call here at all.
+
+A receiver whose shader variant refused the edits, or in whose compiled
+program some edits did not land, tells this object through its
+:class:`~pvshadows.landing.LandingCheck` (no per-frame watch over every
+receiver): the next frame applies its edits again (a refused variant is then
+left as VTK built it) and :meth:`ReceiverEdits.problems` names it.
 """
 
 from __future__ import annotations
@@ -21,6 +29,7 @@ from pvshadows.shading import (
     ShaderEdits,
     bystander_replacements,
     receiver_replacements,
+    receiver_uniforms,
     uniform_setter,
 )
 from pvshadows.snapshot import ActorState, Snapshot
@@ -79,13 +88,19 @@ class ReceiverEdits:
         self._edits: dict[str, ShaderEdits] = {}
         self._uniforms: dict[str, vtk.vtkUniforms] = {}
         self._states: dict[str, ActorState | str | None] = {}
+        self._signature_of: dict[str, tuple] = {}
+        self._lights_of: dict[tuple, list[LightShading]] = {}
         self._replacements: dict[tuple, list[tuple[str, str]]] = {}
+        self._sent: dict[tuple, dict[str, object]] = {}
+        self._members: dict[tuple, list[vtk.vtkUniforms]] = {}
         self._bystander = bystander_replacements()
         self._snapshot: Snapshot | None = None
         self._shadings: list[LightShading] = []
-        self._values: dict[str, object] = {}
-        self._receiving: list[vtk.vtkUniforms] = []
+        self._lit_points: set[str] = set()
+        self._probe: object = None
         self._standing: list[vtk.vtkUniforms] = []
+        self._flagged: set[str] = set()
+        self._problems: dict[str, str] = {}
         #: Uniform values handed to VTK since this object was made (one per actor and uniform).
         self.uniform_calls = 0
         #: Times an actor's replacements were worked out again.
@@ -108,7 +123,7 @@ class ReceiverEdits:
         shadings : list of LightShading
             How receivers read each shadowed light.
         uniforms : dict
-            Uniform values every receiver gets (including the probe switch,
+            Every light's uniform values by name (including the probe switch,
             which bystanders get too).
         light_space : list of LightShading, optional
             The shadings of lights whose lookups work at any fragment
@@ -119,94 +134,157 @@ class ReceiverEdits:
         """
         light_space = light_space or []
         lit_points = lit_points or set()
-        same_lights = shadings == self._shadings
-        if self._values.keys() == uniforms.keys():
-            changed = {n: v for n, v in uniforms.items() if not _same(self._values[n], v)}
-        else:
-            changed = None
-        if snapshot is self._snapshot and same_lights and changed == {}:
+        flagged, self._flagged = self._flagged, set()
+        same = (
+            snapshot is self._snapshot
+            and shadings == self._shadings
+            and lit_points == self._lit_points
+            and not flagged
+        )
+        if same:
+            self._send_changed(uniforms)
             return
-        setters = [uniform_setter(n, v) for n, v in (changed or {}).items()]
-        probe = [s for n, s in zip(changed or {}, setters, strict=True) if n == PROBE_UNIFORM]
-        self._values = dict(uniforms)
-        if snapshot is self._snapshot and same_lights and changed is not None:
-            # Only values changed (the camera moved, say): set just those, on every actor.
-            for targets, chosen in ((self._receiving, setters), (self._standing, probe)):
-                for uniforms_of_actor in targets:
-                    for setter in chosen:
-                        setter(uniforms_of_actor)
-                self.uniform_calls += len(targets) * len(chosen)
-            return
+        fresh: dict[tuple, dict[str, object]] = {}
         touched = set()
+        members: dict[tuple, list[vtk.vtkUniforms]] = {}
+        standing = []
         for state in snapshot.receivers:
             key = state.key()[0]
+            lights = [s.for_actor(key) for s in shadings]
+            self._receive(state.actor, key, state, lights, True, flagged, uniforms, fresh)
+            members.setdefault(self._signature_of[key], []).append(self._uniforms[key])
             touched.add(key)
-            known = key in self._states and self._states[key] is not None
-            if not (known and same_lights and self._states[key] is state):
-                lights = [s.for_actor(key) for s in shadings]
-                self._edits_of(state.actor, key).apply(self._replacements_for(state.actor, lights))
-                self.edited += 1
-            self._send(state.actor, key, known and changed is not None, setters, uniforms)
-            self._states[key] = state
         for actor in snapshot.bystanders:
             key = actor.__this__
             touched.add(key)
             if key in lit_points:
-                known = self._states.get(key) == _LIT_POINTS
-                if not (known and same_lights):
-                    lights = [s.for_actor(key) for s in light_space]
-                    replacements = receiver_replacements(actor, lights, triangles=False)
-                    self._edits_of(actor, key).apply(replacements)
-                    self.edited += 1
-                self._send(actor, key, known and changed is not None, setters, uniforms)
-                self._states[key] = _LIT_POINTS
+                lights = [s.for_actor(key) for s in light_space]
+                self._receive(actor, key, _LIT_POINTS, lights, False, flagged, uniforms, fresh)
+                members.setdefault(self._signature_of[key], []).append(self._uniforms[key])
                 continue
-            known = key in self._states and self._states[key] is None
-            if not known:
+            if not (key in self._states and self._states[key] is None) or key in flagged:
                 self._edits_of(actor, key).apply(self._bystander)
-            probe_only = {PROBE_UNIFORM: uniforms[PROBE_UNIFORM]}
-            self._send(actor, key, known and changed is not None, probe, probe_only)
+                self._edits_of(actor, key).set_uniforms({PROBE_UNIFORM: uniforms[PROBE_UNIFORM]})
+                self._uniforms[key] = actor.GetShaderProperty().GetFragmentCustomUniforms()
+                self.uniform_calls += 1
+            elif uniforms[PROBE_UNIFORM] != self._probe:
+                uniform_setter(PROBE_UNIFORM, uniforms[PROBE_UNIFORM])(self._uniforms[key])
+                self.uniform_calls += 1
             self._states[key] = None
+            self._signature_of.pop(key, None)
+            standing.append(self._uniforms[key])
         for key in set(self._edits) - touched:
             self._forget(key)
-        self._snapshot, self._shadings = snapshot, list(shadings)
-        self._receiving = [self._uniforms[s.key()[0]] for s in snapshot.receivers]
-        self._receiving += [self._uniforms[key] for key in lit_points]
-        self._standing = [
-            self._uniforms[a.__this__] for a in snapshot.bystanders if a.__this__ not in lit_points
-        ]
+        self._sent.update(fresh)
+        for signature in set(self._sent) - set(members):
+            self._sent.pop(signature)
+            self._lights_of.pop(signature, None)
+        self._members, self._standing = members, standing
+        self._snapshot, self._shadings, self._lit_points = snapshot, list(shadings), lit_points
+        self._probe = uniforms[PROBE_UNIFORM]
 
-    def _send(
-        self, actor: vtk.vtkActor, key: str, only_changed: bool, setters: list, values: dict
+    def _receive(
+        self,
+        actor: vtk.vtkActor,
+        key: str,
+        state: ActorState | str,
+        lights: list[LightShading],
+        triangles: bool,
+        flagged: set[str],
+        uniforms: dict[str, object],
+        fresh: dict[tuple, dict[str, object]],
     ) -> None:
-        if only_changed:
-            uniforms = self._uniforms[key]
-            for setter in setters:
-                setter(uniforms)
-            self.uniform_calls += len(setters)
-            return
-        self._edits_of(actor, key).set_uniforms(values)
-        self._uniforms[key] = actor.GetShaderProperty().GetFragmentCustomUniforms()
-        self.uniform_calls += len(values)
-
-    def _replacements_for(
-        self, actor: vtk.vtkActor, lights: list[LightShading]
-    ) -> list[tuple[str, str]]:
+        """Bring one receiver's edits and uniforms up to date (a full frame's path)."""
         pbr = actor.GetProperty().GetInterpolation() == vtk.VTK_PBR
-        signature = _signature(pbr, lights)
-        if signature not in self._replacements:
-            self._replacements[signature] = receiver_replacements(actor, lights)
-        return self._replacements[signature]
+        signature = (triangles, *_signature(pbr, lights))
+        if signature not in fresh:
+            self._lights_of[signature] = lights
+            fresh[signature] = receiver_uniforms(lights, uniforms)
+        values = fresh[signature]
+        same_edits = (
+            self._states.get(key) is state
+            and self._signature_of.get(key) == signature
+            and key not in flagged
+        )
+        edits = self._edits_of(actor, key)
+        if not same_edits:
+            if signature not in self._replacements:
+                self._replacements[signature] = receiver_replacements(
+                    actor, lights, triangles=triangles
+                )
+            edits.apply(self._replacements[signature])
+            self.edited += 1
+            self._note_problem(key)
+        previous = self._sent.get(signature) if self._signature_of.get(key) == signature else None
+        if key in self._uniforms and previous is not None and previous.keys() == values.keys():
+            changed = [n for n, v in values.items() if not _same(previous[n], v)]
+            for name in changed:
+                uniform_setter(name, values[name])(self._uniforms[key])
+            self.uniform_calls += len(changed)
+        else:
+            edits.set_uniforms(values)
+            self._uniforms[key] = actor.GetShaderProperty().GetFragmentCustomUniforms()
+            self.uniform_calls += len(values)
+        self._states[key] = state
+        self._signature_of[key] = signature
+
+    def _send_changed(self, uniforms: dict[str, object]) -> None:
+        """Set only the uniform values that changed, once converted per signature."""
+        for signature, targets in self._members.items():
+            values = receiver_uniforms(self._lights_of[signature], uniforms)
+            previous = self._sent[signature]
+            if previous.keys() == values.keys():
+                changed = [n for n, v in values.items() if not _same(previous[n], v)]
+            else:
+                changed = list(values)
+            setters = [uniform_setter(name, values[name]) for name in changed]
+            for target in targets:
+                for setter in setters:
+                    setter(target)
+            self.uniform_calls += len(targets) * len(setters)
+            self._sent[signature] = values
+        probe = uniforms[PROBE_UNIFORM]
+        if probe != self._probe:
+            setter = uniform_setter(PROBE_UNIFORM, probe)
+            for target in self._standing:
+                setter(target)
+            self.uniform_calls += len(self._standing)
+            self._probe = probe
 
     def _edits_of(self, actor: vtk.vtkActor, key: str) -> ShaderEdits:
         if key not in self._edits:
-            self._edits[key] = ShaderEdits(actor)
+            edits = ShaderEdits(actor)
+            edits.check.notify = lambda: self._flagged.add(key)
+            self._edits[key] = edits
         return self._edits[key]
 
+    def _note_problem(self, key: str) -> None:
+        problem = self._edits[key].problem
+        if problem is None:
+            self._problems.pop(key, None)
+        else:
+            self._problems[key] = problem
+
+    def problems(self) -> dict[str, tuple[vtk.vtkActor, str]]:
+        """Return the receivers that show fewer shadows than asked, and why.
+
+        Returns
+        -------
+        dict
+            Actor key to ``(actor, why)``: its shader variant refused the
+            edits (drawn as VTK built it), or some edits did not land in the
+            program VTK compiled.
+        """
+        for key in self._flagged & set(self._edits):
+            self._note_problem(key)
+        return {key: (self._edits[key].actor, why) for key, why in self._problems.items()}
+
     def _forget(self, key: str) -> None:
-        self._edits.pop(key).remove()
+        self._problems.pop(key, None)
+        self._signature_of.pop(key, None)
         self._uniforms.pop(key, None)
         self._states.pop(key, None)
+        self._edits.pop(key).remove()
 
     def clear(self) -> list[str]:
         """Take every edit and uniform off every actor; return what could not be taken off.
@@ -225,9 +303,8 @@ class ReceiverEdits:
                     f"{type(error).__name__}: {error}"
                 )
             self._edits.pop(key, None)
-            self._uniforms.pop(key, None)
-            self._states.pop(key, None)
-        self._snapshot, self._shadings, self._values = None, [], {}
-        self._receiving, self._standing = [], []
+        self._snapshot, self._shadings, self._lit_points, self._probe = None, [], set(), None
+        self._members, self._standing, self._sent, self._lights_of = {}, [], {}, {}
         self._replacements.clear()
+        self._flagged.clear()
         return troubles

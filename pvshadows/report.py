@@ -137,6 +137,9 @@ class FrameReport:
         these are; their GPU times belong to this frame, whenever they arrive.
     failure : FrameFailure or None
         Why the frame was drawn without shadows, ``None`` when it was not.
+    receivers : list of str
+        Receivers that show fewer shadows than asked, each with why (its
+        shader variant refused pvshadows' edits, or they did not land).
 
     Examples
     --------
@@ -152,6 +155,7 @@ class FrameReport:
     lights: list[LightReport] = field(default_factory=list)
     frame: int = 0
     failure: FrameFailure | None = None
+    receivers: list[str] = field(default_factory=list)
 
     @property
     def gpu_ready(self) -> bool:
@@ -174,7 +178,7 @@ class FrameReport:
         lines = [str(light) for light in self.lights] or ["no lights"]
         if self.failure is not None:
             lines.insert(0, str(self.failure))
-        return "\n".join(lines)
+        return "\n".join(lines + [f"receiver {note}" for note in self.receivers])
 
     def _repr_pretty_(self, printer, cycle: bool) -> None:
         printer.text(str(self))
@@ -195,4 +199,5 @@ class FrameReport:
             f"pvshadows frame: {len(self.lights)} light(s), {self.passes_run} pass(es) run, "
             f"{self.gpu_ms:.3f} GPU ms"
         )
+        rows.extend(["receivers", None, None, None, None, note] for note in self.receivers)
         return html_table(caption, ["light", "technique", "pass", "status", "GPU ms", "why"], rows)

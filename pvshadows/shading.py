@@ -23,7 +23,13 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.programs import glsl_source
-from pvshadows.glsl_library import shadow_functions
+from pvshadows.glsl_library import (
+    MapLookup,
+    group_samplers,
+    group_uniforms,
+    shadow_functions,
+)
+from pvshadows.landing import LandingCheck
 from pvshadows.transforms import column_major
 
 #: Name of the custom uniform that switches a frame to showing one light's visibility.
@@ -32,9 +38,7 @@ PROBE_UNIFORM = "pvsProbeLight"
 _MAIN = "void main()"
 _VIEW_POSITION = "vec4 vertexVC = vertexVCVSOutput;"
 _PROBE_ANCHOR = "//VTK::Picking::Impl"
-_FACET_NORMAL = (
-    "\n  vec3 pvsFacetVC = cross(dFdx(vertexVC.xyz), dFdy(vertexVC.xyz));\n  float pvsProbe = 0.0;"
-)
+_FACET_NORMAL = "\n  pvsFacetVC = cross(dFdx(vertexVC.xyz), dFdy(vertexVC.xyz));"
 
 
 @dataclass(frozen=True)
@@ -52,9 +56,9 @@ class LightShading:
         camera).
     samplers : Mapping[str, str]
         Uniform name to sampler type, for each texture the expression reads.
-    needs : tuple of tuple
-        ``(kind, filter)`` pairs of the shadow-map lookups the expression
-        calls (see :mod:`pvshadows.glsl_library`).
+    needs : tuple of MapLookup
+        The shadow-map lookups whose visibilities the expression reads
+        (see :mod:`pvshadows.glsl_library`).
     sources : tuple of str
         Other files of ``glsl/`` that define functions the expression calls.
     defines : tuple of str
@@ -69,7 +73,7 @@ class LightShading:
     vtk_index: int
     visibility: str
     samplers: Mapping[str, str] = field(default_factory=dict)
-    needs: tuple[tuple[str, str], ...] = ()
+    needs: tuple[MapLookup, ...] = ()
     sources: tuple[str, ...] = ()
     defines: tuple[str, ...] = ()
     only_on: frozenset[str] | None = None
@@ -148,11 +152,14 @@ def _normal_expression(actor: vtk.vtkActor, triangles: bool) -> str:
     return "pvsGeometricNormal(pvsFacetVC, normalVCVSOutput)"
 
 
-def _light_hooks(light: LightShading, pbr: bool, normal: str) -> list[tuple[str, str]]:
+def _light_hooks(
+    light: LightShading, pbr: bool, normal: str, lookup_maps: bool
+) -> list[tuple[str, str]]:
     i = light.vtk_index
     visibility = light.visibility.replace("pvsNormalVC", normal)
     compute = (
-        f"float pvsVisibility{i} = {visibility};\n"
+        (f"pvsLookupMaps(vertexVC.xyz, {normal});\n  " if lookup_maps else "")
+        + f"pvsVisibility{i} = {visibility};\n"
         f"  if ({PROBE_UNIFORM} == {i}) {{ pvsProbe = pvsVisibility{i}; }}\n"
         f"  float pvsKept{i} = 1.0 - {strength_uniform(i)} * (1.0 - pvsVisibility{i});\n"
     )
@@ -206,13 +213,15 @@ def receiver_replacements(
     >>> any("pvsVisibility0" in new for _, new in edits)
     True
     """
-    lights = list(lights)
+    lights = sorted(lights, key=lambda light: light.vtk_index)
     pbr = _uses_pbr(actor)
     sources = dict.fromkeys(source for light in lights for source in light.sources)
     defines = dict.fromkeys(define for light in lights for define in light.defines)
-    needs = dict.fromkeys(need for light in lights for need in light.needs)
+    lookups = [lookup for light in lights for lookup in light.needs]
     functions = "".join(f"#define {name}\n" for name in defines)
-    functions += glsl_source("receiver_normal.glsl") + shadow_functions(needs)
+    functions += glsl_source("receiver_state.glsl") + glsl_source("receiver_normal.glsl")
+    functions += "".join(f"float pvsVisibility{light.vtk_index} = 1.0;\n" for light in lights)
+    functions += shadow_functions(lookups)
     functions += "".join(glsl_source(source) for source in sources)
     edits = [
         (_MAIN, f"{functions}\n{_MAIN}"),
@@ -224,14 +233,43 @@ def receiver_replacements(
             ),
         ),
     ]
+    first_lookup = min((lookup.vtk_index for lookup in lookups), default=None)
+    samplers = {name: (kind, None) for light in lights for name, kind in light.samplers.items()}
+    samplers.update(group_samplers(lookups))
     normal = _normal_expression(actor, triangles)
     for light in lights:
-        edits.extend(_light_hooks(light, pbr, normal))
-        edits.extend(
-            (f"uniform int {name};", f"uniform {kind} {name};")
-            for name, kind in light.samplers.items()
-        )
+        edits.extend(_light_hooks(light, pbr, normal, light.vtk_index == first_lookup))
+    for name, (kind, length) in samplers.items():
+        size = "" if length is None else f"[{length}]"
+        edits.append((f"uniform int {name}{size};", f"uniform {kind} {name}{size};"))
     return edits
+
+
+def receiver_uniforms(
+    lights: Iterable[LightShading], uniforms: Mapping[str, object]
+) -> dict[str, object]:
+    """Return the uniforms of a receiver that shows ``lights``.
+
+    Parameters
+    ----------
+    lights : iterable of LightShading
+        The shadowed lights, as :func:`receiver_replacements` got them.
+    uniforms : Mapping
+        Every light's uniforms by name, as the techniques set them.
+
+    Returns
+    -------
+    dict
+        The same, with the map lookups' own uniforms packed into their
+        groups' arrays (:func:`pvshadows.glsl_library.group_uniforms`).
+
+    Examples
+    --------
+    >>> from pvshadows.shading import LightShading, receiver_uniforms
+    >>> receiver_uniforms([LightShading(0, "1.0")], {"pvsProbeLight": -1})
+    {'pvsProbeLight': -1}
+    """
+    return group_uniforms([lookup for light in lights for lookup in light.needs], uniforms)
 
 
 def bystander_replacements() -> list[tuple[str, str]]:
@@ -266,9 +304,11 @@ def set_uniform(uniforms: vtk.vtkUniforms, name: str, value: object) -> None:
         A shader property's fragment custom uniforms.
     name : str
         Uniform name.
-    value : int, float, sequence of 4 floats, or (4, 4) array
+    value : int, float, list of int, sequence of 4 floats, (4, 4) or (n, 4, 4) array
         ``int`` sets an ``int`` (also a sampler's texture unit), ``float`` a
-        ``float``, four numbers a ``vec4`` and a 4x4 array a ``mat4``.
+        ``float``, a list of ``int`` an ``int[n]`` (also a sampler array's
+        units), four numbers a ``vec4``, a 4x4 array a ``mat4`` and an
+        ``(n, 4, 4)`` array a ``mat4[n]``.
 
     Examples
     --------
@@ -291,7 +331,7 @@ def uniform_setter(name: str, value: object) -> Callable[[vtk.vtkUniforms], None
     ----------
     name : str
         Uniform name.
-    value : int, float, sequence of 4 floats, or (4, 4) array
+    value : int, float, list of int, sequence of 4 floats, (4, 4) or (n, 4, 4) array
         As :func:`set_uniform` takes it.
 
     Returns
@@ -317,6 +357,9 @@ def uniform_setter(name: str, value: object) -> Callable[[vtk.vtkUniforms], None
     if isinstance(value, bool | int | np.integer):
         whole = int(value)
         return lambda uniforms: uniforms.SetUniformi(name, whole)
+    if isinstance(value, list) and all(isinstance(v, int) for v in value):
+        units = list(value)
+        return lambda uniforms: uniforms.SetUniform1iv(name, len(units), units)
     if isinstance(value, float | np.floating):
         real = float(value)
         return lambda uniforms: uniforms.SetUniformf(name, real)
@@ -324,6 +367,9 @@ def uniform_setter(name: str, value: object) -> Callable[[vtk.vtkUniforms], None
     if array.shape == (4, 4):
         matrix = column_major(array).tolist()
         return lambda uniforms: uniforms.SetUniformMatrix4x4(name, matrix)
+    if array.ndim == 3 and array.shape[1:] == (4, 4):
+        matrices = column_major(array).tolist()
+        return lambda uniforms: uniforms.SetUniformMatrix4x4v(name, len(matrices), matrices)
     if array.shape == (4,):
         vector = array.astype(np.float32).tolist()
         return lambda uniforms: uniforms.SetUniform4f(name, vector)
@@ -348,23 +394,58 @@ class ShaderEdits:
         self.actor = actor
         self._edits: list[tuple[str, str]] = []
         self._uniforms: set[str] = set()
+        self._refused: list[tuple[str, str]] | None = None
+        #: Checks each program VTK compiles for the actor against the edits.
+        self.check = LandingCheck(actor)
 
     def apply(self, edits: list[tuple[str, str]]) -> None:
         """Make the actor's pvshadows edits exactly ``edits`` (a no-op when unchanged).
+
+        Edits with which VTK could not compile the actor's shader are not
+        applied again: the actor stays as VTK built it (unshadowed) and
+        :attr:`problem` says so, until the edits change.
 
         Parameters
         ----------
         edits : list of tuple
             ``(original, replacement)`` pairs.
         """
-        if edits == self._edits:
-            return
-        prop = self.actor.GetShaderProperty()
-        for original, _ in self._edits:
-            prop.ClearFragmentShaderReplacement(original, False)
-        for original, replacement in edits:
-            prop.AddFragmentShaderReplacement(original, False, replacement, False)
-        self._edits = list(edits)
+        if self.check.failed:
+            self._refused = self._edits
+        wanted = [] if edits == self._refused else edits
+        if wanted != self._edits:
+            prop = self.actor.GetShaderProperty()
+            for original, _ in self._edits:
+                prop.ClearFragmentShaderReplacement(original, False)
+            for original, replacement in wanted:
+                prop.AddFragmentShaderReplacement(original, False, replacement, False)
+            self._edits = list(wanted)
+        self.check.expect(self._edits)
+
+    @property
+    def problem(self) -> str | None:
+        """Why the actor shows fewer shadows than asked, or ``None``.
+
+        Returns
+        -------
+        str or None
+            The actor's shader variant refused the edits (it is drawn
+            unshadowed, exactly as VTK built it), or some required edits did
+            not land in the program VTK compiled (for example a VTK version
+            whose generated lighting code changed).
+        """
+        if self._refused and not self._edits:
+            return (
+                "its shader variant does not compile with pvshadows' edits; drawn "
+                "unshadowed, exactly as VTK built it"
+            )
+        if self.check.missing:
+            return (
+                "pvshadows' shader edits did not land in the program VTK compiled "
+                f"(VTK's generated code differs at: {'; '.join(self.check.missing)}); "
+                "the lights they shadow are drawn unshadowed on it"
+            )
+        return None
 
     def set_uniforms(self, values: Mapping[str, object]) -> None:
         """Set custom uniforms, and remove the ones set before but absent now.
@@ -395,6 +476,7 @@ class ShaderEdits:
         self._uniforms.add(PROBE_UNIFORM)
 
     def remove(self) -> None:
-        """Take every pvshadows edit and uniform off the actor."""
+        """Take every pvshadows edit and uniform off the actor, and stop checking it."""
         self.apply([])
         self.set_uniforms({})
+        self.check.release()

@@ -1,7 +1,7 @@
 """The filters of the map-based techniques: the lookup each light asks for, and what it binds.
 
 Cube maps and 2D maps share the filters (``glsl/shadow_filters.glsl``); this
-module writes one light's lookup call for its kind of map and filter, and
+module names one light's lookup for its kind of map and filter, and
 binds the textures that call reads: the map for comparisons, a plain view of
 it for PCSS's blocker search, and the jittered disk offsets.
 """
@@ -11,20 +11,16 @@ from __future__ import annotations
 from pvshadows import _vtk as vtk
 from pvshadows.gl.sampling import DiskOffsets, RawDepthView
 from pvshadows.gl.textures import DepthTexture
-from pvshadows.glsl_library import KINDS, filter_function
+from pvshadows.glsl_library import MapLookup
 from pvshadows.settings import ShadowSettings
 from pvshadows.shading import LightShading
 
 #: Side of the tap grid for each ``pcf_taps`` value.
 PCF_GRID = {4: 2, 16: 4, 36: 6, 64: 8}
+#: Side of the box of bilinear compares the hard filter cuts at one half (its 3 x 3 texels).
+HARD_BOX = 2
 #: Offsets PCSS needs at least (its blocker search takes 16).
 PCSS_SEARCH = 16
-
-_MAP_STRUCTS = {
-    "cube": "PvsCubeMap(pvsParams{i}, pvsCone{i})",
-    "spot": "PvsSpotMap(pvsLightToClip{i}, pvsParams{i}, pvsCone{i})",
-    "sun": "PvsSunMap(pvsParams{i})",
-}
 
 
 def lookup_shading(
@@ -47,47 +43,27 @@ def lookup_shading(
     Returns
     -------
     LightShading
-        The lookup call (reading the uniforms ``pvsDepth{i}``, ``pvsParams{i}``,
-        ``pvsViewToLight{i}``, ``pvsBias{i}``, ...), its samplers and its needs.
+        The light's :class:`~pvshadows.glsl_library.MapLookup` (it reads the
+        uniforms ``pvsDepth{i}``, ``pvsParams{i}``, ``pvsViewToLight{i}``,
+        ``pvsBias{i}``, ...) and the visibility it sets.
 
     Examples
     --------
     >>> from pvshadows.settings import ShadowSettings
     >>> from pvshadows.techniques.filtering import lookup_shading
     >>> shading = lookup_shading("sun", 2, ShadowSettings(filter="pcf", pcf_taps=4))
-    >>> shading.visibility.startswith("pvsSunPcf(pvsDepth2, PvsSunMap(pvsParams2)")
-    True
+    >>> shading.visibility, shading.needs[0].group, shading.needs[0].taps
+    ('pvsMapVisibility2', 'SunPcf', 2)
     """
-    i = vtk_index
-    names = KINDS[kind]
-    map_struct = _MAP_STRUCTS[kind].format(i=i)
-    receiver = (
-        f"pvs{kind.capitalize()}Receiver({map_struct}, pvsViewToLight{i}, pvsBias{i}.xyz, "
-        "vertexVC.xyz, pvsNormalVC)"
-    )
     if not has_map:
-        call = f"{filter_function(kind, 'lit')}({map_struct}, {receiver})"
-        return LightShading(i, call, needs=((kind, "lit"),))
-    function = filter_function(kind, settings.filter)
-    samplers = {f"pvsDepth{i}": names["PVS_COMPARE_MAP"]}
-    if settings.filter == "hard":
-        call = f"{function}(pvsDepth{i}, {map_struct}, {receiver})"
+        lookup = MapLookup(kind, "lit", vtk_index)
     elif settings.filter == "pcf":
-        call = f"{function}(pvsDepth{i}, {map_struct}, {receiver}, {PCF_GRID[settings.pcf_taps]})"
-    elif settings.filter == "random":
-        samplers[f"pvsOffsets{i}"] = "sampler3D"
-        call = (
-            f"{function}(pvsDepth{i}, {map_struct}, {receiver}, pvsOffsets{i}, "
-            f"{settings.samples}, pvsFilterRadius{i})"
-        )
+        lookup = MapLookup(kind, "pcf", vtk_index, PCF_GRID[settings.pcf_taps])
+    elif settings.filter in ("random", "pcss"):
+        lookup = MapLookup(kind, settings.filter, vtk_index, settings.samples)
     else:
-        samplers[f"pvsOffsets{i}"] = "sampler3D"
-        samplers[f"pvsRaw{i}"] = names["PVS_RAW_MAP"]
-        call = (
-            f"{function}(pvsDepth{i}, pvsRaw{i}, {map_struct}, {receiver}, pvsOffsets{i}, "
-            f"{settings.samples})"
-        )
-    return LightShading(i, call, samplers, needs=((kind, settings.filter),))
+        lookup = MapLookup(kind, "hard", vtk_index, HARD_BOX)
+    return LightShading(vtk_index, lookup.visibility_name, needs=(lookup,))
 
 
 class FilterBindings:

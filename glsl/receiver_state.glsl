@@ -1,0 +1,14 @@
+// Added to a receiver's fragment shader before main(), which every variant
+// VTK builds has: the values the other edits share live here (with each
+// shadowed light's pvsVisibility<i>, 1 until its diffuse or radiance hook
+// sets it), so that each edit compiles on its own, whichever of the others
+// found its place in the variant VTK generated (lines and points lack some of
+// a surface's code).
+
+// The visibility the probe shows (pvsProbeLight picks the light).
+float pvsProbe = 0.0;
+
+// The facet normal from screen-space derivatives, set at the top of main()
+// where the variant computes its view position; zero (the shading normal
+// stands in, see pvsGeometricNormal) where it does not.
+vec3 pvsFacetVC = vec3(0.0);

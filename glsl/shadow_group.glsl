@@ -1,0 +1,67 @@
+// The lights of one group (one kind of map read with one filter), looked up
+// one after another with the group's uniform arrays. Each filter's taps loop
+// over a uniform count, so the driver keeps them loops: the receiver's shader
+// grows by one small lookup per light, not by lights x taps (inlining
+// constant tap counts made 16 lights with 16-tap PCF compile for minutes on
+// llvmpipe). The lights are not one GLSL loop over sampler arrays: with
+// ARB_gpu_shader5's dynamically indexed samplers, LLVM 15 (llvmpipe) crashes
+// compiling a PCF loop over sampler2DShadow arrays. Instantiated once per
+// group, after that kind's filters (shadow_filters.glsl, whose PVS_* names are
+// still defined); before this file the receiver defines:
+//
+//   PVS_GROUP_CUBE, _SPOT or _SUN          the kind of map
+//   PVS_GROUP_LIT, _HARD, _PCF, _RANDOM or _PCSS   the filter (hard: PCF's box
+//                            of 2 x 2 compares cut at one half, a loop too:
+//                            straight-line compares cost LLVM more to compile
+//                            than loops do)
+//   PVS_GROUP_SIZE           lights in the group (sizes the uniform arrays)
+//   PVS_GROUP_LOOKUP         name of the function defined here
+//   PVS_GROUP_RECEIVER       the kind's receiver function
+//   PVS_GROUP_VIEW_TO_LIGHT  uniform mat4[]: view coordinates to light space
+//   PVS_GROUP_PACK           uniform mat4[]: columns params, cone, bias (xyz),
+//                            filter (x radius in texels, y taps)
+//   PVS_GROUP_CLIP           uniform mat4[]: light space to the spot map's clip space
+//   PVS_GROUP_DEPTH, PVS_GROUP_RAW, PVS_GROUP_OFFSETS   sampler arrays: the maps
+//                            for comparisons, plain views of them (PCSS), disk offsets
+//   PVS_GROUP_ALL            PVS_GROUP_ONE(0) PVS_GROUP_ONE(1) ...: every light,
+//                            by constant index (GLSL 1.50 indexes sampler arrays
+//                            with constants only)
+//
+// The macros are on one line each: GLSL 1.50 has no line continuation.
+
+#if defined(PVS_GROUP_CUBE)
+#define PVS_GROUP_MAP(j) PvsCubeMap(PVS_GROUP_PACK[j][0], PVS_GROUP_PACK[j][1])
+#elif defined(PVS_GROUP_SPOT)
+#define PVS_GROUP_MAP(j) PvsSpotMap(PVS_GROUP_CLIP[j], PVS_GROUP_PACK[j][0], PVS_GROUP_PACK[j][1])
+#else
+#define PVS_GROUP_MAP(j) PvsSunMap(PVS_GROUP_PACK[j][0])
+#endif
+
+#define PVS_GROUP_TAPS(j) int(PVS_GROUP_PACK[j][3].y)
+
+#if defined(PVS_GROUP_LIT)
+#define PVS_GROUP_FILTER(j, r) PVS_LIT(PVS_GROUP_MAP(j), r)
+#elif defined(PVS_GROUP_HARD)
+// The 3 x 3 texels round the receiver weighted as 2 x 2 bilinear compares would
+// weight them, cut at one half: a hard edge through the middle of the texels on
+// either side of it, not along their outlines (a staircase many pixels wide up close).
+#define PVS_GROUP_FILTER(j, r) step(0.5, PVS_PCF(PVS_GROUP_DEPTH[j], PVS_GROUP_MAP(j), r, PVS_GROUP_TAPS(j)))
+#elif defined(PVS_GROUP_PCF)
+#define PVS_GROUP_FILTER(j, r) PVS_PCF(PVS_GROUP_DEPTH[j], PVS_GROUP_MAP(j), r, PVS_GROUP_TAPS(j))
+#elif defined(PVS_GROUP_RANDOM)
+#define PVS_GROUP_FILTER(j, r) PVS_RANDOM(PVS_GROUP_DEPTH[j], PVS_GROUP_MAP(j), r, PVS_GROUP_OFFSETS[j], PVS_GROUP_TAPS(j), PVS_GROUP_PACK[j][3].x)
+#else
+#define PVS_GROUP_FILTER(j, r) PVS_PCSS(PVS_GROUP_DEPTH[j], PVS_GROUP_RAW[j], PVS_GROUP_MAP(j), r, PVS_GROUP_OFFSETS[j], PVS_GROUP_TAPS(j))
+#endif
+
+#define PVS_GROUP_ONE(j) visibility[j] = PVS_GROUP_FILTER(j, PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW_TO_LIGHT[j], PVS_GROUP_PACK[j][2].xyz, posVC, normalVC));
+
+void PVS_GROUP_LOOKUP(vec3 posVC, vec3 normalVC, out float visibility[PVS_GROUP_SIZE])
+{
+  PVS_GROUP_ALL
+}
+
+#undef PVS_GROUP_MAP
+#undef PVS_GROUP_TAPS
+#undef PVS_GROUP_FILTER
+#undef PVS_GROUP_ONE
