@@ -258,6 +258,21 @@ class ReceiverEdits:
             self._edits[key] = edits
         return self._edits[key]
 
+    def of(self, key: str) -> ShaderEdits | None:
+        """Return the edits kept for the actor ``key``, or ``None`` when it has none.
+
+        Parameters
+        ----------
+        key : str
+            The actor's :func:`pvshadows.scene.vtk_id`.
+
+        Returns
+        -------
+        ShaderEdits or None
+            What pvshadows put on the actor's shader property.
+        """
+        return self._edits.get(key)
+
     def _note_problem(self, key: str) -> None:
         problem = self._edits[key].problem
         if problem is None:

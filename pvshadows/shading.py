@@ -161,7 +161,7 @@ def _light_hooks(
         (f"pvsLookupMaps(vertexVC.xyz, {normal});\n  " if lookup_maps else "")
         + f"pvsVisibility{i} = {visibility};\n"
         f"  if ({PROBE_UNIFORM} == {i}) {{ pvsProbe = pvsVisibility{i}; }}\n"
-        f"  float pvsKept{i} = 1.0 - {strength_uniform(i)} * (1.0 - pvsVisibility{i});\n"
+        f"  pvsKept{i} = 1.0 - {strength_uniform(i)} * (1.0 - pvsVisibility{i});\n"
     )
     if pbr:
         return [
@@ -220,7 +220,10 @@ def receiver_replacements(
     lookups = [lookup for light in lights for lookup in light.needs]
     functions = "".join(f"#define {name}\n" for name in defines)
     functions += glsl_source("receiver_state.glsl") + glsl_source("receiver_normal.glsl")
-    functions += "".join(f"float pvsVisibility{light.vtk_index} = 1.0;\n" for light in lights)
+    functions += "".join(
+        f"float pvsVisibility{i} = 1.0;\nfloat pvsKept{i} = 1.0;\n"
+        for i in (light.vtk_index for light in lights)
+    )
     functions += shadow_functions(lookups)
     functions += "".join(glsl_source(source) for source in sources)
     edits = [

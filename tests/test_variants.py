@@ -121,7 +121,7 @@ def _check_variant(pl, actor):
     assert kept > 0.9, f"only {kept:.0%} of the variant's pixels are drawn with shadows on"
     assert pl.shadows.last_frame.receivers == []
     key = vtk_id(actor)
-    edits = [r._edits[key] for r in pl.shadows._renderers if key in r._edits]
+    edits = [r._edits.of(key) for r in pl.shadows._renderers if r._edits.of(key) is not None]
     assert edits and edits[0].check.checked >= 1  # its compiled program was read and checked
 
 
