@@ -546,9 +546,9 @@ class References:
 
 def _vtk_visibility(scene: StandardScene, clock: PairedClock, frames: int, at_least: int):
     plotter = scene.plotter
-    plotter.enable_shadows()
+    plotter.enable_shadows()  # type: ignore[call-arg]  # pyvista: decorated, self untyped
     base, moving = clock.medians(frames, moving=True, at_least=at_least)
-    plotter.disable_shadows()
+    plotter.disable_shadows()  # type: ignore[call-arg]  # pyvista: decorated, self untyped
     return builtin_visibility(plotter, scene.light), (base, moving), (base, moving)
 
 

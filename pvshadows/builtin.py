@@ -45,11 +45,11 @@ def builtin_visibility(plotter: pv.Plotter, light: vtk.vtkLight) -> np.ndarray:
     light.SetIntensity(0.0)
     ambient = _frame(plotter)
     light.SetIntensity(intensity)
-    plotter.enable_shadows()
+    plotter.enable_shadows()  # type: ignore[call-arg]  # pyvista: decorated, self untyped
     try:
         shadowed = _frame(plotter)
     finally:
-        plotter.disable_shadows()
+        plotter.disable_shadows()  # type: ignore[call-arg]  # pyvista: decorated, self untyped
         plotter.render()
     added = plain - ambient
     with np.errstate(invalid="ignore", divide="ignore"):
