@@ -426,6 +426,7 @@ class PairedClock:
     def _frame(self, scene: StandardScene, home: np.ndarray, nudge: float) -> float:
         scene.light.position = tuple(home + nudge * scene.scale)
         window = scene.plotter.ren_win
+        assert window is not None
         start = time.perf_counter()
         window.Render()
         window.MakeCurrent()
