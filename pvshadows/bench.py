@@ -25,7 +25,7 @@ import csv
 import math
 import statistics
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -166,7 +166,7 @@ def cubemap_cases(
 #: The technique that draws each kind of light's shadow map (what ``auto`` picks).
 MAP_TECHNIQUE = {"point": "cubemap", "spot": "map", "directional": "map"}
 #: Map settings measured for every kind of light alike, so a preset can be chosen among them.
-MAP_GRID = (
+MAP_GRID: tuple[Mapping[str, object], ...] = (
     *(
         {"resolution": r, **f}
         for r in (256, 512, 1024, 2048)
@@ -426,6 +426,7 @@ class PairedClock:
     def _frame(self, scene: StandardScene, home: np.ndarray, nudge: float) -> float:
         scene.light.position = tuple(home + nudge * scene.scale)
         window = scene.plotter.ren_win
+        assert window is not None
         start = time.perf_counter()
         window.Render()
         window.MakeCurrent()
@@ -546,9 +547,9 @@ class References:
 
 def _vtk_visibility(scene: StandardScene, clock: PairedClock, frames: int, at_least: int):
     plotter = scene.plotter
-    plotter.enable_shadows()
+    plotter.enable_shadows()  # type: ignore[call-arg]  # pyvista: decorated, self untyped
     base, moving = clock.medians(frames, moving=True, at_least=at_least)
-    plotter.disable_shadows()
+    plotter.disable_shadows()  # type: ignore[call-arg]  # pyvista: decorated, self untyped
     return builtin_visibility(plotter, scene.light), (base, moving), (base, moving)
 
 
@@ -595,7 +596,7 @@ def _bench_light(
             light,
             case.setting,
             hard.misclassified,
-            area.rmse if soft else hard.rmse,
+            area.rmse if soft and area is not None else hard.rmse,
             area_light if soft else "hard",
             moving[1] / moving[0],
             static[1] / static[0],
@@ -883,7 +884,7 @@ def pareto_front(rows: list[BenchRow], error: Callable[[BenchRow], float]) -> li
 
 
 #: Marker of each filter in the frontier plot; cases without a filter get :data:`NO_FILTER`.
-FILTER_MARKERS = {"hard": "s", "pcf": "o", "random": "^", "pcss": "D"}
+FILTER_MARKERS: dict[str | None, str] = {"hard": "s", "pcf": "o", "random": "^", "pcss": "D"}
 #: Marker of cases without a filter (volumes, planar shadows, VTK's own).
 NO_FILTER = "X"
 
@@ -915,7 +916,8 @@ def technique_colours(rows: list[BenchRow]) -> dict[str, tuple]:
     """
     import matplotlib.pyplot as plt
 
-    palette = plt.cm.tab10.colors
+    # matplotlib types plt.cm.tab10 as a Colormap; it is a ListedColormap, with colours.
+    palette: list[tuple] = plt.cm.tab10.colors  # type: ignore[attr-defined]
     names = dict.fromkeys(row.technique for row in rows)
     return {name: palette[i % len(palette)] for i, name in enumerate(names)}
 

@@ -20,7 +20,9 @@ MIN_CONTRIBUTION = 4.0 / 255.0
 
 def _frame(plotter: pv.Plotter) -> np.ndarray:
     plotter.render()
-    return plotter.screenshot(return_img=True).astype(np.float64).mean(axis=2) / 255.0
+    image = plotter.screenshot(return_img=True)
+    assert image is not None
+    return image.astype(np.float64).mean(axis=2) / 255.0
 
 
 def builtin_visibility(plotter: pv.Plotter, light: vtk.vtkLight) -> np.ndarray:
@@ -45,11 +47,11 @@ def builtin_visibility(plotter: pv.Plotter, light: vtk.vtkLight) -> np.ndarray:
     light.SetIntensity(0.0)
     ambient = _frame(plotter)
     light.SetIntensity(intensity)
-    plotter.enable_shadows()
+    plotter.enable_shadows()  # type: ignore[call-arg]  # pyvista: decorated, self untyped
     try:
         shadowed = _frame(plotter)
     finally:
-        plotter.disable_shadows()
+        plotter.disable_shadows()  # type: ignore[call-arg]  # pyvista: decorated, self untyped
         plotter.render()
     added = plain - ambient
     with np.errstate(invalid="ignore", divide="ignore"):

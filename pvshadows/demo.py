@@ -41,7 +41,7 @@ def render_demo(
 
     scene = standard_scene(window_size=window_size)
     plotter = scene.plotter
-    plotter.set_background("#f4f1ea", top="#bcc8d6")
+    plotter.set_background("#f4f1ea", top="#bcc8d6")  # type: ignore[arg-type]  # pyvista: decorated, self untyped
     bulb = plotter.add_mesh(
         pv.Sphere(radius=0.12, center=scene.light.position),
         color="#fff6c8",

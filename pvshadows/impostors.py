@@ -55,5 +55,5 @@ def lit_without_triangles(actor: vtk.vtkActor) -> bool:
         return True
     mapper = actor.GetMapper()
     data = mapper.GetInputDataObject(0, 0) if mapper is not None else None
-    point_data = data.GetPointData() if hasattr(data, "GetPointData") else None
+    point_data = data.GetPointData() if data is not None and hasattr(data, "GetPointData") else None
     return point_data is not None and point_data.GetNormals() is not None

@@ -260,6 +260,7 @@ def capabilities(
     plotter = pv.Plotter(off_screen=not onscreen, window_size=list(window_size), lighting="none")
     try:
         window = plotter.ren_win
+        assert window is not None
         window.SetStencilCapable(1)
         plotter.add_mesh(pv.Plane(i_size=8, j_size=8))
         plotter.add_mesh(pv.Sphere(radius=0.6, center=(0, 0, 1.2)))

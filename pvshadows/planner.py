@@ -101,10 +101,10 @@ def _technique_for(
             f"auto chose {technique} for a {kind.value} light (quality={settings.quality!r})"
         )
     if kind not in SERVES[settings.technique]:
-        technique, _ = _technique_for(kind, replace(settings, technique="auto"), only_a_plane)
-        return technique, (
+        chosen, _ = _technique_for(kind, replace(settings, technique="auto"), only_a_plane)
+        return chosen, (
             f"technique {settings.technique!r} cannot serve a {kind.value} light: "
-            f"it casts with {technique}, auto's choice, instead"
+            f"it casts with {chosen}, auto's choice, instead"
         )
     return settings.technique, f"{settings.technique} as configured"
 

@@ -81,7 +81,8 @@ class _WithoutImagePasses:
     def __init__(self, renderer: vtk.vtkRenderer) -> None:
         self._renderer = renderer
         self._top = renderer.GetPass()
-        chain, current = [], self._top
+        chain: list[vtk.vtkRenderPass] = []
+        current = self._top
         while current is not None and len(chain) < 64:
             chain.append(current)
             delegate = getattr(current, "GetDelegatePass", None)
@@ -131,6 +132,7 @@ def read_visibility(
         receiver is seen.
     """
     window = plotter.ren_win
+    assert window is not None
     saved = (
         renderer.GetBackground(),
         renderer.GetGradientBackground(),

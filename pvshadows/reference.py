@@ -27,6 +27,7 @@ import math
 import numbers
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, fields
+from typing import Any
 
 import numpy as np
 
@@ -290,8 +291,8 @@ def require_traceable(sizes: dict[str, float]) -> None:
     """
     if not sizes:
         return
-    largest = max(sizes, key=sizes.get)
-    smallest = min(sizes, key=sizes.get)
+    largest = max(sizes, key=sizes.__getitem__)
+    smallest = min(sizes, key=sizes.__getitem__)
     if sizes[smallest] < SMALLEST_TRACEABLE * sizes[largest]:
         msg = (
             f"reference(): {smallest} is {sizes[smallest]:.3g} across in a scene "
@@ -398,8 +399,10 @@ def trace_reference(
     flat = _FlatResult.empty(n_pixels)
     frame = _Frame.around(meshes)
     if frame is not None:
+        primary = _Triangles.build(meshes, frame, intersector_type, lambda mesh: True)
+        assert primary is not None  # a frame exists only around some triangles
         tracer = _Tracer(
-            primary=_Triangles.build(meshes, frame, intersector_type, lambda mesh: True),
+            primary=primary,
             shadow=_Triangles.build(meshes, frame, intersector_type, lambda mesh: mesh.caster),
             camera=_Camera.of(view, frame),
             emitter=_Emitter.from_pose(light, frame, light_size, samples),
@@ -530,7 +533,7 @@ class _Triangles:
     owner: np.ndarray
     lo: np.ndarray
     hi: np.ndarray
-    intersector: object
+    intersector: Any  # trimesh's ray intersector (embree or numpy), untyped
 
     @classmethod
     def build(
@@ -841,6 +844,7 @@ class _Tracer:
         A ray that meets a translucent surface before its end goes on past it
         with ``1 - opacity`` of its light, up to :data:`_MAX_CROSSINGS` times.
         """
+        assert self.shadow is not None
         passed = np.ones(origins.shape[0])
         going = np.arange(origins.shape[0])
         for crossing in range(_MAX_CROSSINGS):
@@ -875,6 +879,7 @@ class _Tracer:
         ray into the caster meeting the caster's far side. ``triangle`` and
         ``blocker`` are updated in place.
         """
+        assert self.shadow is not None
         grazed = (triangle >= 0) & (blocker < LIGHT_SKIP) & (blocker < reach - RAY_TOLERANCE)
         if grazed.any():
             start = origins[grazed] + directions[grazed] * LIGHT_SKIP

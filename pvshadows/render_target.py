@@ -42,7 +42,7 @@ class RenderTarget:
 
 
 def _passes(renderer: vtk.vtkRenderer) -> list[vtk.vtkRenderPass]:
-    chain = []
+    chain: list[vtk.vtkRenderPass] = []
     current = renderer.GetPass()
     while current is not None and len(chain) < 64:
         chain.append(current)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pyvista as pv
@@ -110,16 +111,21 @@ def standard_scene(
     >>> scene.plotter.window_size
     [320, 240]
     """
-    offset = np.asarray(offset, dtype=np.float64)
+    origin = np.asarray(offset, dtype=np.float64)
 
     def place(mesh: pv.PolyData) -> pv.PolyData:
         mesh = mesh.copy()
-        mesh.points = np.asarray(mesh.points, dtype=np.float64) * scale + offset
+        mesh.points = np.asarray(mesh.points, dtype=np.float64) * scale + origin
         return mesh
 
     plotter = pv.Plotter(off_screen=off_screen, window_size=list(window_size), lighting="none")
-    plotter.set_background("white")
-    style = {"ambient": ambient, "diffuse": 0.85, "specular": 0.2, "smooth_shading": True}
+    plotter.set_background("white")  # type: ignore[arg-type]  # pyvista: decorated, self untyped
+    style: dict[str, Any] = {
+        "ambient": ambient,
+        "diffuse": 0.85,
+        "specular": 0.2,
+        "smooth_shading": True,
+    }
     ground = plotter.add_mesh(
         place(pv.Plane(i_size=10, j_size=10, i_resolution=20, j_resolution=20)),
         color="#d9d4c7",
@@ -157,7 +163,7 @@ def standard_scene(
         name="cylinder",
         **style,
     )
-    light_at = np.asarray(light_position, dtype=np.float64) * scale + offset
+    light_at = np.asarray(light_position, dtype=np.float64) * scale + origin
     if light == "point":
         light_object = pv.Light(
             position=tuple(light_at),
@@ -169,7 +175,7 @@ def standard_scene(
     elif light == "spot":
         light_object = pv.Light(
             position=tuple(light_at),
-            focal_point=tuple(offset),
+            focal_point=tuple(origin),
             positional=True,
             cone_angle=cone_angle,
             light_type="scene light",
@@ -184,18 +190,18 @@ def standard_scene(
             ]
         )
         light_object = pv.Light(
-            position=tuple(offset + 10.0 * scale * towards_sun),
-            focal_point=tuple(offset),
+            position=tuple(origin + 10.0 * scale * towards_sun),
+            focal_point=tuple(origin),
             light_type="scene light",
         )
     plotter.add_light(light_object)
     position, focal, up = camera
     plotter.camera_position = [
-        tuple(np.asarray(position) * scale + offset),
-        tuple(np.asarray(focal) * scale + offset),
+        tuple(np.asarray(position) * scale + origin),
+        tuple(np.asarray(focal) * scale + origin),
         tuple(up),
     ]
-    return StandardScene(plotter, light_object, ground, box, sphere, cylinder, scale, offset)
+    return StandardScene(plotter, light_object, ground, box, sphere, cylinder, scale, origin)
 
 
 def spot_light(position, focal_point, cone_angle=30.0, intensity=0.3) -> pv.Light:

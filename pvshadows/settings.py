@@ -11,6 +11,7 @@ import math
 import warnings
 from dataclasses import dataclass, fields, replace
 from numbers import Integral, Real
+from typing import Any
 
 #: Techniques a light can be given; "auto" lets the planner choose.
 TECHNIQUES = ("auto", "cubemap", "map", "volume", "planar")
@@ -32,7 +33,7 @@ ON_OPEN = ("fallback", "raise")
 QUALITIES = ("draft", "balanced", "exact")
 #: What each quality sets, before the user's own settings: the settings ``pvshadows bench``
 #: chose for each preset's promise (:mod:`pvshadows.bench_presets`) on the machine that set them.
-QUALITY_PRESETS = {
+QUALITY_PRESETS: dict[str, dict[str, Any]] = {
     "draft": {"resolution": 512, "filter": "hard"},
     "balanced": {"resolution": 1024, "filter": "pcf", "pcf_taps": 4},
     "exact": {"resolution": 2048, "filter": "hard"},
@@ -179,7 +180,8 @@ def _light_size(value: object) -> float:
     if isinstance(value, bool) or not isinstance(value, Real):
         msg = f"light_size must be a number (0 for a point-like light), got {value!r}"
         raise TypeError(msg)
-    if not (math.isfinite(value) and value >= 0.0):
+    number = float(value)
+    if not (math.isfinite(number) and number >= 0.0):
         msg = f"light_size={value} is not allowed; it must be a finite number >= 0"
         raise ValueError(msg)
     return float(value)
@@ -189,7 +191,8 @@ def _strength(value: object) -> float:
     if isinstance(value, bool) or not isinstance(value, Real):
         msg = f"strength must be a number from 0 (no shadow) to 1 (full shadow), got {value!r}"
         raise TypeError(msg)
-    if not (math.isfinite(value) and 0.0 <= value <= 1.0):
+    number = float(value)
+    if not (math.isfinite(number) and 0.0 <= number <= 1.0):
         msg = f"strength={value} is out of range; it must be from 0 (no shadow) to 1 (full shadow)"
         raise ValueError(msg)
     return float(value)
@@ -206,7 +209,8 @@ def _texels(name: str, value: object) -> float:
     if isinstance(value, bool) or not isinstance(value, Real):
         msg = f"{name} must be a number of texels (a float from 0 to 100), got {value!r}"
         raise TypeError(msg)
-    if not (math.isfinite(value) and 0.0 <= value <= 100.0):
+    number = float(value)
+    if not (math.isfinite(number) and 0.0 <= number <= 100.0):
         msg = f"{name}={value} is out of range; it must be from 0 to 100 texels"
         raise ValueError(msg)
     return float(value)
@@ -318,7 +322,7 @@ def validated(base: ShadowSettings, **changes: object) -> ShadowSettings:
             f"the settings are {', '.join(sorted(known))}"
         )
         raise TypeError(msg)
-    checked = {name: _CHECKS[name](value) for name, value in changes.items()}
+    checked: dict[str, Any] = {name: _CHECKS[name](value) for name, value in changes.items()}
     result = replace(base, **checked)
     if set(changes) & set(BIASES) and not any(getattr(result, name) for name in BIASES):
         warnings.warn(

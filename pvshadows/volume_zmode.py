@@ -62,7 +62,7 @@ def near_region(renderer: vtk.vtkRenderer) -> np.ndarray | None:
     if camera.GetParallelProjection():
         return None
     matrix = camera.GetCompositeProjectionTransformMatrix(renderer.GetTiledAspectRatio(), -1, 1)
-    inverse = np.linalg.inv(pv.array_from_vtkmatrix(matrix))
+    inverse = np.linalg.inv(np.asarray(pv.array_from_vtkmatrix(matrix), dtype=np.float64))
     ndc = np.array([[x, y, -1.0, 1.0] for x in (-1.0, 1.0) for y in (-1.0, 1.0)])
     corners = ndc @ inverse.T
     corners = corners[:, :3] / corners[:, 3:4]
@@ -110,10 +110,10 @@ def hull_touches_box(points: np.ndarray, box: np.ndarray, margin: float = 1e-9) 
     points = points - centre
     half = 0.5 * (box[1] - box[0])
     differences = [b - a for a, b in combinations(points, 2)]
-    axes = list(np.eye(3))
-    axes += [np.cross(u, v) for u, v in combinations(differences, 2)]
-    axes += [np.cross(u, e) for u in differences for e in np.eye(3)]
-    axes = np.array(axes)
+    axis_list = list(np.eye(3))
+    axis_list += [np.cross(u, v) for u, v in combinations(differences, 2)]
+    axis_list += [np.cross(u, e) for u in differences for e in np.eye(3)]
+    axes = np.array(axis_list)
     lengths = np.linalg.norm(axes, axis=1)
     scale = max(float(np.abs(points).max()), float(half.max()), 1e-300)
     keep = lengths > 1e-12 * scale * scale

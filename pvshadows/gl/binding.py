@@ -227,7 +227,7 @@ def _glvnd_loaded() -> bool:
     return True
 
 
-def _bridge(loaded: str, wanted: str) -> str | None:
+def _bridge(loaded: str | None, wanted: str) -> str | None:
     """Let PyOpenGL, imported for ``loaded``, see contexts of ``wanted``; return why not."""
     if {loaded, wanted} != {"egl", "glx"} or not sys.platform.startswith("linux"):
         return f"PyOpenGL cannot reach a {wanted!r} context from its {loaded!r} platform"
@@ -308,6 +308,7 @@ def describe_binding(window: vtk.vtkRenderWindow) -> str:
     if wanted is None:
         text = f"{loaded} (PyOpenGL's default: the context's API could not be told)"
     elif loaded != wanted:
+        assert loaded is not None
         text = (
             f"{loaded}, bridged to this {wanted.upper()} context through libglvnd "
             f"(PyOpenGL was imported for {loaded.upper()} first)"

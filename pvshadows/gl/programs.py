@@ -8,7 +8,7 @@ keeps VTK's idea of the bound program true.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -64,7 +64,7 @@ def glsl_source(name: str) -> str:
     return (glsl_dir() / name).read_text(encoding="utf-8")
 
 
-def with_defines(source: str, defines: dict[str, object] | None = None) -> str:
+def with_defines(source: str, defines: Mapping[str, object] | None = None) -> str:
     r"""Put ``#define`` lines right after a stage's ``#version`` line.
 
     Parameters
@@ -104,7 +104,7 @@ def compile_files(
     vertex: str,
     fragment: str,
     geometry: str = "",
-    defines: dict[str, object] | None = None,
+    defines: Mapping[str, object] | None = None,
 ) -> vtk.vtkShaderProgram:
     """Compile, link and bind a program from stage files of ``glsl/``.
 

@@ -39,7 +39,7 @@ CAP_DEPTH_OFFSET = 1.0e-6
 
 #: The stage files of each program: the depth pre-pass, volumes extruded on the
 #: GPU (geometry shader) or built on the CPU, and the full-screen mask pass.
-_STAGES = {
+_STAGES: dict[str, tuple[str, str] | tuple[str, str, str]] = {
     "depth": ("volume_depth.vert", "volume_colour.frag"),
     "gpu": ("volume_extrude.vert", "volume_colour.frag", "volume_extrude.geom"),
     "cpu": ("volume_homogeneous.vert", "volume_colour.frag"),

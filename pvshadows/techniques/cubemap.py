@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -68,10 +69,10 @@ def distance_range(position: np.ndarray, casters: list) -> tuple[float, float]:
         outside = np.maximum(np.maximum(lo, -hi), 0.0)
         nearest = float(np.linalg.norm(outside, axis=1).min())
         far = float(np.linalg.norm(np.maximum(np.abs(lo), np.abs(hi)), axis=1).max())
-    return nearest, max(far * 1.01, np.finfo(np.float32).tiny * 1e6)
+    return nearest, cast(float, max(far * 1.01, np.finfo(np.float32).tiny * 1e6))
 
 
-class CubemapTechnique(PerLightMaps):
+class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
     """Keeps a depth cube per point light and renders it only when it changed.
 
     Parameters
@@ -102,6 +103,7 @@ class CubemapTechnique(PerLightMaps):
             The passes run, reused or skipped.
         """
         settings = plan.settings
+        assert settings is not None and plan.pose is not None
         state = self._states.get(vtk_id(plan.light))
         if state is None or state.cube.resolution != settings.resolution:
             if state is not None:
@@ -135,6 +137,7 @@ class CubemapTechnique(PerLightMaps):
                 )
             )
         state.nearest, state.far = distance_range(position, plan.casters)
+        assert self._pass is not None
         reports = self._pass.render(state.cube, casters, state.far, settings.passes, context.timer)
         state.key, state.frame = key, context.frame
         return reports
@@ -152,6 +155,7 @@ class CubemapTechnique(PerLightMaps):
         LightShading
             The lookup call with the light's filter, and its samplers.
         """
+        assert plan.settings is not None
         return lookup_shading("cube", plan.vtk_index, plan.settings)
 
     def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
@@ -172,6 +176,7 @@ class CubemapTechnique(PerLightMaps):
         state = self._states[vtk_id(plan.light)]
         settings = plan.settings
         pose = plan.pose
+        assert settings is not None and pose is not None
         i = plan.vtk_index
         spot = pose.kind is LightKind.SPOT
         cone = np.cos(np.radians(pose.cone_angle)) if spot else -2.0

@@ -56,10 +56,11 @@ class MapState:
 
 
 def _kind(plan: LightPlan) -> str:
+    assert plan.pose is not None
     return "sun" if plan.pose.kind is LightKind.DIRECTIONAL else "spot"
 
 
-class MapTechnique(PerLightMaps):
+class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
     """Keeps a 2D depth map per spot or directional light.
 
     Parameters
@@ -75,6 +76,7 @@ class MapTechnique(PerLightMaps):
         self._pass = MapDepthPass(window)
 
     def _state(self, plan: LightPlan) -> MapState:
+        assert plan.settings is not None
         key = vtk_id(plan.light)
         state = self._states.get(key)
         if state is None or state.depth.resolution != plan.settings.resolution:
@@ -100,6 +102,7 @@ class MapTechnique(PerLightMaps):
             The pass run, reused or skipped.
         """
         state = self._state(plan)
+        assert plan.pose is not None
         if plan.pose.kind is LightKind.DIRECTIONAL:
             return self._update_sun(plan, context, state)
         return self._update_spot(plan, context, state)
@@ -108,6 +111,7 @@ class MapTechnique(PerLightMaps):
         self, plan: LightPlan, context: FrameContext, state: MapState
     ) -> list[PassReport]:
         pose, settings = plan.pose, plan.settings
+        assert pose is not None and settings is not None
         inside = plan.casters
         ranged = inside or context.snapshot.casters
         keys = tuple(c.key() for c in inside)
@@ -139,6 +143,7 @@ class MapTechnique(PerLightMaps):
         self, plan: LightPlan, context: FrameContext, state: MapState
     ) -> list[PassReport]:
         pose, settings = plan.pose, plan.settings
+        assert pose is not None and settings is not None
         actors = context.snapshot.actors
         # The fit depends on the light, the actors and the view: the same three give the same fit.
         fit_key = (pose.key(), settings.resolution, context.view.world_to_clip.tobytes())
@@ -159,8 +164,8 @@ class MapTechnique(PerLightMaps):
         state.fit = fit
         kept = state.casters_of
         if kept is None or kept[0] is not fit or kept[1] is not actors:
-            state.casters_of = (fit, actors, fit.casters_in(actors))
-        drawn = state.casters_of[2]
+            kept = state.casters_of = (fit, actors, fit.casters_in(actors))
+        drawn = kept[2]
         state.world_to_light = fit.world_to_light()
         state.light_to_clip = np.diag([1.0 / fit.half_width, 1.0 / fit.half_width, 0.0, 1.0])
         tangent = np.tan(np.radians(settings.light_size))
@@ -200,6 +205,7 @@ class MapTechnique(PerLightMaps):
                     f"light, casters and coverage unchanged since frame {state.frame}",
                 )
             ]
+        assert self._pass is not None and state.light_to_clip is not None
         drawn = [
             MapCaster(
                 context.buffers.get(caster),
@@ -235,6 +241,7 @@ class MapTechnique(PerLightMaps):
             whose map was skipped (nothing to shadow) shows no shadow.
         """
         drawn = self._states[vtk_id(plan.light)].drawn
+        assert plan.settings is not None
         return lookup_shading(_kind(plan), plan.vtk_index, plan.settings, has_map=drawn)
 
     def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
@@ -254,6 +261,7 @@ class MapTechnique(PerLightMaps):
         """
         state = self._states[vtk_id(plan.light)]
         i = plan.vtk_index
+        assert plan.settings is not None and plan.pose is not None
         uniforms = self._filters.activate(i, plan.settings, state.depth if state.drawn else None)
         uniforms[f"pvsViewToLight{i}"] = state.world_to_light @ context.view.view_to_world
         uniforms[f"pvsParams{i}"] = state.params

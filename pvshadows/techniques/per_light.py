@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import ClassVar, Protocol
+from typing import ClassVar, Generic, Protocol, TypeVar
 
 import numpy as np
 
@@ -28,6 +28,10 @@ class Releasable(Protocol):
         """Release them."""
 
 
+StateT = TypeVar("StateT", bound=LightState)
+PassT = TypeVar("PassT", bound=Releasable)
+
+
 def face_to_cull(caster: ActorState, settings: ShadowSettings) -> str | None:
     """Return the side of a caster's triangles its shadow map leaves out.
 
@@ -49,7 +53,7 @@ def face_to_cull(caster: ActorState, settings: ShadowSettings) -> str | None:
     return "front" if np.linalg.det(caster.matrix[:3, :3]) > 0.0 else "back"
 
 
-class PerLightMaps:
+class PerLightMaps(Generic[StateT, PassT]):
     """Keeps one :class:`LightState` per light and the filters' textures.
 
     Subclasses set ``name``, fill ``self._states`` keyed by
@@ -66,8 +70,8 @@ class PerLightMaps:
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
         self._filters = FilterBindings(window)
-        self._states: dict[str, LightState] = {}
-        self._pass: Releasable | None = None
+        self._states: dict[str, StateT] = {}
+        self._pass: PassT | None = None
 
     def deactivate(self) -> None:
         """Free the texture units bound by ``activate``."""

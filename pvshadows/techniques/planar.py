@@ -29,6 +29,7 @@ and reused otherwise.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
@@ -72,6 +73,7 @@ def homogeneous_light(plan: LightPlan) -> np.ndarray:
         ``(position, 1)`` for point and spot lights, ``(direction towards
         the light, 0)`` for directional ones.
     """
+    assert plan.pose is not None
     if plan.pose.kind is LightKind.DIRECTIONAL:
         return np.append(-plan.pose.direction, 0.0)
     return np.append(plan.pose.position, 1.0)
@@ -223,7 +225,7 @@ class PlanarTechnique:
         The window whose context owns the masks and the framebuffer.
     """
 
-    name = "planar"
+    name: ClassVar[str] = "planar"
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
@@ -281,6 +283,7 @@ class PlanarTechnique:
     def _draw(
         self, plan: LightPlan, context: FrameContext, state: _LightState, choice: PlaneChoice
     ) -> list[PassReport]:
+        assert choice.actor is not None and choice.plane is not None and plan.pose is not None
         light = homogeneous_light(plan)
         plane = facing(choice.plane, light)
         name = choice.actor.name

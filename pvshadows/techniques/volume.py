@@ -38,6 +38,7 @@ import time
 import warnings
 import weakref
 from dataclasses import dataclass, field, fields, replace
+from typing import ClassVar
 
 import numpy as np
 import pyvista as pv
@@ -55,7 +56,7 @@ from pvshadows.scene import ActorTriangles, vtk_id
 from pvshadows.shading import LightShading
 from pvshadows.silhouette import volume_geometry
 from pvshadows.snapshot import ActorState, Snapshot
-from pvshadows.techniques.base import FrameContext
+from pvshadows.techniques.base import FrameContext, Technique
 from pvshadows.translucency import transmittance
 from pvshadows.volume_casters import VolumeMesh, batches, prepare_volume_mesh, winding_number
 from pvshadows.volume_zmode import choose_zmode
@@ -252,6 +253,7 @@ class _LightState:
 
 def _homogeneous_light(plan: LightPlan) -> np.ndarray:
     """Return the light in world coordinates: (position, 1), or (direction towards it, 0)."""
+    assert plan.pose is not None
     if plan.kind is LightKind.DIRECTIONAL:
         return np.array([*(-plan.pose.direction), 0.0])
     return np.array([*plan.pose.position, 1.0])
@@ -311,7 +313,7 @@ class VolumeTechnique:
         The window whose context owns the framebuffer, masks and buffers.
     """
 
-    name = "volume"
+    name: ClassVar[str] = "volume"
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
@@ -322,7 +324,7 @@ class VolumeTechnique:
         self._cpu: dict[tuple[str, str], _CpuVolume] = {}
         self._depth_key: tuple | None = None
         self._depth_frame = -1
-        self._fallbacks: dict[str, object] = {}
+        self._fallbacks: dict[str, Technique] = {}
         self._warned: set[tuple] = set()
         self._context: FrameContext | None = None
 
@@ -362,6 +364,7 @@ class VolumeTechnique:
         if state is None:
             state = self._lights[light_id] = _LightState(MaskTexture(self._window, width, height))
         settings = plan.settings
+        assert settings is not None and plan.pose is not None
         closed, open_casters = self._split_casters(plan)
         reports: list[PassReport] = []
         state.fallback = self._plan_fallback(plan, open_casters)
@@ -378,8 +381,9 @@ class VolumeTechnique:
             plan.notes.append(
                 f"the light is inside {enclosing.name}: everything outside it is in its shadow"
             )
-            key = ("inside", plan.pose.key(), enclosing.key())
+            key: tuple = ("inside", plan.pose.key(), enclosing.key())
             if key != state.key:
+                assert self._target is not None
                 self._passes.fill(self._target, state.mask, 0.0)
                 state.key, state.frame, state.draws, state.zmode = key, context.frame, [], ""
                 reports.append(PassReport("shadow mask", "run", "all in shadow (light enclosed)"))
@@ -435,6 +439,7 @@ class VolumeTechnique:
             if closed
             else "no closed caster: mask all lit",
         )
+        assert self._target is not None
         with context.timer.measure(record):
             self._passes.count(self._target, state.mask, draws, zmode, passing)
         reports.append(record)
@@ -464,6 +469,7 @@ class VolumeTechnique:
             try:
                 closed.append((caster, prepared_mesh(caster.triangles, caster.name)))
             except OpenMeshError as error:
+                assert plan.settings is not None
                 if plan.settings.on_open == "raise":
                     require_closed([(caster.name, caster.triangles)])
                     raise error  # pragma: no cover - require_closed raised already
@@ -503,6 +509,7 @@ class VolumeTechnique:
             warnings.warn(f"pvshadows: {reason}; {then}", stacklevel=2)
         if not usable:
             return None
+        assert name is not None
         return name, replace(plan, casters=open_casters, technique=name, notes=[])
 
     def _fallback_update(self, state: _LightState, context: FrameContext) -> list[PassReport]:
@@ -515,7 +522,7 @@ class VolumeTechnique:
             report.name = f"fallback {report.name}"
         return reports
 
-    def _fallback(self, name: str):
+    def _fallback(self, name: str) -> Technique:
         if name not in self._fallbacks:
             from pvshadows.techniques import TECHNIQUE_CLASSES
 
@@ -551,6 +558,7 @@ class VolumeTechnique:
             DepthDraw(context.buffers.get(actor), camera @ actor.model_matrix()) for actor in actors
         ]
         self._depth_key = key
+        assert self._target is not None
         return self._passes.depth(self._target, draws, context.timer)
 
     def _volume_draws(
@@ -590,7 +598,7 @@ class VolumeTechnique:
                 draws = []
                 for first, end in ranges_of[number]:
                     a, b = int(mesh.body_starts[first]), int(mesh.body_starts[end])
-                    piece = (6 * a, 6 * (b - a), "all")
+                    span = (6 * a, 6 * (b - a), "all")
                     draws.append(
                         VolumeDraw(
                             buffers,
@@ -598,7 +606,7 @@ class VolumeTechnique:
                             camera @ model,
                             light_model,
                             mirrored,
-                            [piece],
+                            [span],
                             extrude_to,
                         )
                     )
@@ -819,10 +827,10 @@ class VolumeTechnique:
         for key in set(self._lights) - alive:
             self._lights.pop(key).mask.release()
         casters = {vtk_id(c.actor) for p in using for c in p.casters}
-        for key in set(self._meshes) - casters:
-            self._meshes.pop(key)[1].release()
-        for key in [k for k in self._cpu if k[0] not in alive or k[1] not in casters]:
-            self._cpu.pop(key).buffers.release()
+        for mesh_key in set(self._meshes) - casters:
+            self._meshes.pop(mesh_key)[1].release()
+        for cpu_key in [k for k in self._cpu if k[0] not in alive or k[1] not in casters]:
+            self._cpu.pop(cpu_key).buffers.release()
         fallback_plans = [s.fallback[1] for s in self._lights.values() if s.fallback]
         for technique in self._fallbacks.values():
             technique.keep_only(fallback_plans)
