@@ -7,6 +7,7 @@ from collections.abc import Iterable
 from dataclasses import replace
 from functools import partial
 from numbers import Integral, Real
+from typing import cast
 
 import numpy as np
 import pyvista as pv
@@ -221,8 +222,9 @@ class ShadowsComponent:
         """
         self._check_light(light, "light")
         current = self._per_light.get(vtk_id(light), self._defaults)
-        if isinstance(settings.get("quality"), str):
-            current = preset(settings["quality"])
+        quality = settings.get("quality")
+        if isinstance(quality, str):
+            current = preset(quality)
         updated = validated(current, **settings)
         kind = light_kind(light)
         if updated.technique != "auto" and kind not in SERVES[updated.technique]:
@@ -711,7 +713,7 @@ class ShadowsComponent:
             view.world_to_ndc.tobytes(),
             (width, height),
             pose.key(),
-            (float(light_size), int(samples)),
+            (float(cast(float, light_size)), int(cast(int, samples))),
             tuple(
                 (*a.key(), a.caster, a.receiver, transmittance(a.actor)) for a in snapshot.actors
             ),
@@ -731,7 +733,11 @@ class ShadowsComponent:
                 for a in snapshot.actors
             ]
             result = trace_reference(
-                meshes, view, pose, light_size=float(light_size), samples=int(samples)
+                meshes,
+                view,
+                pose,
+                light_size=float(cast(float, light_size)),
+                samples=int(cast(int, samples)),
             )
             self._traced = (key, result)
         return self._traced[1]
@@ -762,13 +768,14 @@ def _check_reference_options(light_size: object = 0.0, samples: object = 1) -> N
     if isinstance(samples, bool) or not isinstance(samples, Integral):
         msg = f"samples must be an int, got {samples!r}"
         raise TypeError(msg)
-    if not (np.isfinite(light_size) and light_size >= 0.0):
+    size, count = float(light_size), int(samples)
+    if not (np.isfinite(size) and size >= 0.0):
         msg = f"light_size={light_size} is not allowed; it must be a finite number >= 0"
         raise ValueError(msg)
-    if not 1 <= samples <= MAX_SAMPLES:
+    if not 1 <= count <= MAX_SAMPLES:
         msg = f"samples={samples} is out of range; it must be from 1 to {MAX_SAMPLES}"
         raise ValueError(msg)
-    if (samples > 1) != (light_size > 0.0):
+    if (count > 1) != (size > 0.0):
         msg = (
             f"samples={samples} with light_size={light_size}: soft shadows need both "
             "samples > 1 and light_size > 0, hard shadows samples=1 and light_size=0"

@@ -26,7 +26,7 @@ from pvshadows.receivers import ReceiverEdits
 from pvshadows.report import FrameFailure, FrameReport, LightReport
 from pvshadows.scene import vtk_id
 from pvshadows.settings import ShadowSettings
-from pvshadows.shading import PROBE_UNIFORM, strength_uniform
+from pvshadows.shading import PROBE_UNIFORM, LightShading, strength_uniform
 from pvshadows.snapshot import SceneReader, Snapshot
 from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.base import FrameContext, Technique
@@ -119,6 +119,7 @@ class RendererShadows:
 
     def _run_frame(self) -> None:
         self._start_gl()
+        assert self._buffers is not None and self._timer is not None  # made by _start_gl
         renderer = self.renderer
         renderer.UpdateLightsGeometryToFollowCamera()
         snapshot = self._reader.read(renderer)
@@ -139,8 +140,7 @@ class RendererShadows:
         report = self._building
         uniforms: dict[str, object] = {PROBE_UNIFORM: self.probe_index}
         shadings = []
-        light_space = []
-        light_space = []
+        light_space: list[LightShading] = []
         self._active = []
         for plan in plans:
             light_report = LightReport(
@@ -153,6 +153,7 @@ class RendererShadows:
             technique = self.technique(plan.technique)
             light_report.passes = technique.update(plan, context)
             shadings.append(technique.shading(plan))
+            assert plan.settings is not None  # a light with a technique has its settings
             uniforms[strength_uniform(plan.vtk_index)] = plan.settings.strength
             if plan.technique in LIGHT_SPACE_TECHNIQUES:
                 light_space.append(shadings[-1])
@@ -290,8 +291,10 @@ class RendererShadows:
             window.MakeCurrent()
             for technique in self._techniques.values():
                 technique.release()
-            self._buffers.release()
-            self._timer.release()
+            if self._buffers is not None:
+                self._buffers.release()
+            if self._timer is not None:
+                self._timer.release()
             forget_pointer_records()
         self._techniques.clear()
         self._window = None

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -294,9 +295,10 @@ def _matrices(uniforms: Mapping[str, object], prefix: str, members: list[MapLook
 
 def _pack(uniforms: Mapping[str, object], lookup: MapLookup) -> np.ndarray:
     i = lookup.vtk_index
-    radius = float(uniforms.get(f"pvsFilterRadius{i}", 0.0))
+    radius = float(cast(float, uniforms.get(f"pvsFilterRadius{i}", 0.0)))
     columns = [
-        uniforms.get(f"{name}{i}", (0.0,) * 4) for name in ("pvsParams", "pvsCone", "pvsBias")
+        np.asarray(uniforms.get(f"{name}{i}", (0.0,) * 4), dtype=float)
+        for name in ("pvsParams", "pvsCone", "pvsBias")
     ]
     return np.column_stack([*columns, (radius, lookup.taps, 0.0, 0.0)]).astype(float)
 
@@ -342,5 +344,7 @@ def group_uniforms(
         if members[0].kind == "spot":
             packed[f"{name}LightToClip"] = _matrices(uniforms, "pvsLightToClip", members)
         for part in GROUP_SAMPLERS[members[0].filter]:
-            packed[f"{name}{part}"] = [int(uniforms[f"pvs{part}{m.vtk_index}"]) for m in members]
+            packed[f"{name}{part}"] = [
+                int(cast(int, uniforms[f"pvs{part}{m.vtk_index}"])) for m in members
+            ]
     return packed

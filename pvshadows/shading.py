@@ -237,7 +237,9 @@ def receiver_replacements(
         ),
     ]
     first_lookup = min((lookup.vtk_index for lookup in lookups), default=None)
-    samplers = {name: (kind, None) for light in lights for name, kind in light.samplers.items()}
+    samplers: dict[str, tuple[str, int | None]] = {
+        name: (kind, None) for light in lights for name, kind in light.samplers.items()
+    }
     samplers.update(group_samplers(lookups))
     normal = _normal_expression(actor, triangles)
     for light in lights:
