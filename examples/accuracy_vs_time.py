@@ -5,7 +5,7 @@ Accuracy against time
 What does a sharper or softer shadow cost? ``pvshadows bench`` renders the
 same scene with every technique and setting, measures each frame against ray
 tracing, and times it against the same scene drawn without shadows. Here a
-handful of its point-light cases run through :mod:`pvshadows.bench` in a
+handful of its point-light cases run through :mod:`pvshadows.tools.bench` in a
 small window, with three frames per median and an area light of 16 rays per
 pixel, so this takes well under a minute; the
 :doc:`accuracy and cost </accuracy>` page shows the whole bench, with spot
@@ -19,7 +19,7 @@ beats on both error and time lies on the grey frontier.
 import tempfile
 from pathlib import Path
 
-from pvshadows.bench import BenchCase, plot_frontier, run_bench, write_table
+from pvshadows.tools.bench import BenchCase, plot_frontier, run_bench, write_table
 
 cases = [
     BenchCase("cubemap", {"resolution": 256, "filter": "hard"}),

@@ -2,6 +2,6 @@
 
 import sys
 
-from pvshadows.cli import main
+from pvshadows.tools.cli import main
 
 sys.exit(main())

@@ -13,27 +13,27 @@ import numpy as np
 import pyvista as pv
 
 from pvshadows import _vtk as vtk
-from pvshadows.frame import RendererShadows
 from pvshadows.gl.binding import check_window
-from pvshadows.light_kit import casts_by_default
-from pvshadows.lights import light_kind, light_pose
-from pvshadows.measure import Measurement, compare
-from pvshadows.naming import ActorNames
-from pvshadows.planes import require_plane
-from pvshadows.planner import AUTO_TECHNIQUE, SERVES, LightPlan
-from pvshadows.probe import read_visibility, require_drawn
-from pvshadows.reference import (
+from pvshadows.model.plan import AUTO_TECHNIQUE, SERVES, LightPlan
+from pvshadows.model.report import FrameReport
+from pvshadows.model.settings import ShadowSettings, preset, validated
+from pvshadows.pipeline.frame import RendererShadows
+from pvshadows.scene.light_kit import casts_by_default
+from pvshadows.scene.lights import light_kind, light_pose
+from pvshadows.scene.naming import ActorNames
+from pvshadows.scene.planes import require_plane
+from pvshadows.scene.snapshot import SceneReader
+from pvshadows.scene.translucency import transmittance
+from pvshadows.scene.triangles import vtk_id, world_points
+from pvshadows.verify.measure import Measurement, compare
+from pvshadows.verify.probe import read_visibility, require_drawn
+from pvshadows.verify.reference import (
     MAX_SAMPLES,
     SceneMesh,
     ViewSpec,
     require_traceable,
     trace_reference,
 )
-from pvshadows.report import FrameReport
-from pvshadows.scene import vtk_id, world_points
-from pvshadows.settings import ShadowSettings, preset, validated
-from pvshadows.snapshot import SceneReader
-from pvshadows.translucency import transmittance
 
 
 class ShadowsComponent:
@@ -123,7 +123,7 @@ class ShadowsComponent:
             ``passes``, ``bias``, ``slope_bias``, ``normal_offset``, and for
             volumes ``zmode``, ``extrude``, ``on_open``, and ``strength``
             (0 to 1: how much of a shadowed light's contribution is removed,
-            1 by default; see :class:`pvshadows.settings.ShadowSettings`).
+            1 by default; see :class:`pvshadows.model.settings.ShadowSettings`).
             ``bias=0, slope_bias=0, normal_offset=0`` compares each lit
             surface with its own depth in the map, so about half of it
             shadows itself in speckles (acne, 43 % of lit pixels in the
@@ -200,7 +200,7 @@ class ShadowsComponent:
         light : pyvista.Light
             A light of this plotter.
         **settings
-            Any setting of :class:`pvshadows.settings.ShadowSettings`
+            Any setting of :class:`pvshadows.model.settings.ShadowSettings`
             (``technique``, ``resolution``, ``filter``, ``pcf_taps``,
             ``samples``, ``light_size``, ``passes``, the biases, ``zmode``,
             ``extrude``, ``on_open``, ``strength``, ...); ``quality`` starts
@@ -303,7 +303,7 @@ class ShadowsComponent:
             ``True`` names it the plane that ``technique="planar"`` flattens
             shadows onto (otherwise the largest flat receiver is found on
             its own). Its points must lie in one plane, within
-            :data:`pvshadows.planes.PLANE_TOLERANCE` of its size.
+            :data:`pvshadows.scene.planes.PLANE_TOLERANCE` of its size.
 
         Raises
         ------
@@ -378,7 +378,7 @@ class ShadowsComponent:
 
         Returns
         -------
-        pvshadows.report.FrameReport
+        pvshadows.model.report.FrameReport
             Printable; ``passes_run`` counts the passes that ran. With
             subplots, each light says which subplot it lights. GPU times
             are read without stalling the GPU: a pass's ``ms`` arrives in
@@ -436,7 +436,7 @@ class ShadowsComponent:
             last frame, or ``scale`` is below 1.
         TypeError
             If ``scale`` is not an int.
-        pvshadows.probe.FrameFailedError
+        pvshadows.verify.probe.FrameFailedError
             If pvshadows failed in the frame, so it was drawn without
             shadows (:attr:`last_frame` says which light, which pass and
             the error).
@@ -505,13 +505,13 @@ class ShadowsComponent:
 
         Returns
         -------
-        pvshadows.measure.Measurement
+        pvshadows.verify.measure.Measurement
             Share of lit-side pixels whose shadow class disagrees, false and
             missed shadow shares, and the RMSE of visibility.
 
         Raises
         ------
-        TypeError, ValueError, pvshadows.probe.FrameFailedError
+        TypeError, ValueError, pvshadows.verify.probe.FrameFailedError
             As :meth:`visibility` does.
         """
         unknown = sorted(set(reference) - {"light_size", "samples"})

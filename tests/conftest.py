@@ -4,7 +4,7 @@ import pytest
 import pyvista as pv
 
 import pvshadows  # noqa: F401  (registers pl.shadows)
-from pvshadows.scenes import standard_scene
+from pvshadows.tools.scenes import standard_scene
 
 pv.OFF_SCREEN = True
 

@@ -25,7 +25,7 @@ import numpy as np
 import vtk
 
 from pvshadows.gl.binding import describe_binding
-from pvshadows.scenes import standard_scene
+from pvshadows.tools.scenes import standard_scene
 
 WINDOW_SIZE = (400, 300)
 

@@ -8,7 +8,7 @@ import pyvista as pv
 
 from conftest import draw, point_light
 from pvshadows.gl.binding import opengl_for
-from pvshadows.scenes import standard_scene
+from pvshadows.tools.scenes import standard_scene
 
 
 @pytest.mark.parametrize(

@@ -11,7 +11,7 @@ import pytest
 import pyvista as pv
 
 from conftest import point_light
-from pvshadows.scenes import standard_scene
+from pvshadows.tools.scenes import standard_scene
 
 NAN, INF = math.nan, math.inf
 

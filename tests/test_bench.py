@@ -7,8 +7,8 @@ import math
 
 import pytest
 
-from pvshadows.bench import BenchCase, BenchRow, quick_cases, run_bench, steady, write_table
-from pvshadows.bench_presets import (
+from pvshadows.tools.bench import BenchCase, BenchRow, quick_cases, run_bench, steady, write_table
+from pvshadows.tools.bench_presets import (
     BALANCED_WITHIN,
     DRAFT_WITHIN,
     choose_presets,
@@ -16,8 +16,8 @@ from pvshadows.bench_presets import (
     presets_lines,
     write_presets,
 )
-from pvshadows.bench_progress import ProgressBar
-from pvshadows.cli import parser
+from pvshadows.tools.bench_progress import ProgressBar
+from pvshadows.tools.cli import parser
 
 LIGHTS = ("point", "spot", "directional")
 

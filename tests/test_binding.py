@@ -10,7 +10,7 @@ import pytest
 import pyvista as pv
 
 from pvshadows.gl.binding import current_api, platform_for
-from pvshadows.info import TRIALS
+from pvshadows.tools.info import TRIALS
 
 
 def run_offscreen(code, **env):
@@ -55,7 +55,7 @@ def test_pyopengl_imported_for_glx_first_is_bridged_to_the_egl_window():
         """
         import OpenGL.GL
         from pvshadows.gl.binding import describe_binding
-        from pvshadows.scenes import standard_scene
+        from pvshadows.tools.scenes import standard_scene
         scene = standard_scene(window_size=(400, 300))
         scene.plotter.shadows.enable(technique="cubemap", filter="hard")
         print(scene.plotter.shadows.measure(scene.light).misclassified)
@@ -75,8 +75,8 @@ def test_a_platform_that_cannot_reach_the_window_is_refused_clearly():
         import OpenGL.GL
         import pvshadows.gl.binding as binding
         binding._glvnd_loaded = lambda: False  # as on a system without libglvnd
-        from pvshadows.info import capabilities
-        from pvshadows.scenes import standard_scene
+        from pvshadows.tools.info import capabilities
+        from pvshadows.tools.scenes import standard_scene
         scene = standard_scene(window_size=(64, 48))
         try:
             scene.plotter.shadows.enable()
@@ -99,7 +99,7 @@ def test_a_platform_that_cannot_reach_the_window_is_refused_clearly():
 
 def test_info_onscreen_without_a_display_says_why():
     result = run_offscreen(
-        "from pvshadows.cli import main; raise SystemExit(main(['info', '--onscreen']))",
+        "from pvshadows.tools.cli import main; raise SystemExit(main(['info', '--onscreen']))",
         WAYLAND_DISPLAY="wayland-0",
     )
     assert result.returncode == 1
@@ -114,8 +114,8 @@ def test_info_onscreen_without_a_display_says_why():
 def test_an_osmesa_window_runs_every_technique():
     result = run_offscreen(
         """
-        from pvshadows.info import capabilities
-        from pvshadows.scenes import standard_scene
+        from pvshadows.tools.info import capabilities
+        from pvshadows.tools.scenes import standard_scene
         print(capabilities())
         scene = standard_scene(light="spot", window_size=(400, 300))
         scene.plotter.shadows.enable(technique="map", filter="hard")

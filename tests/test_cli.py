@@ -101,7 +101,7 @@ def test_bad_command_line_is_refused():
 
 
 def test_frontier_plot_takes_every_technique_and_light(tmp_path):
-    from pvshadows.bench import BenchRow, plot_frontier
+    from pvshadows.tools.bench import BenchRow, plot_frontier
 
     rows = [
         BenchRow(technique, light, "filter=hard", 0.001 * (i + 1), 0.01, "hard", 1.0 + i, 1.0, 10)

@@ -1,11 +1,11 @@
-"""Tests for pvshadows.closed: welding, checking and repairing casters."""
+"""Tests for pvshadows.geometry.closed: welding, checking and repairing casters."""
 
 import numpy as np
 import pytest
 import pyvista as pv
 from pyvista import examples
 
-from pvshadows.closed import ClosedMesh, OpenMeshError, edge_defects, make_closed, weld
+from pvshadows.geometry.closed import ClosedMesh, OpenMeshError, edge_defects, make_closed, weld
 
 
 def surface(mesh: pv.PolyData) -> tuple[np.ndarray, np.ndarray]:

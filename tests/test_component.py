@@ -10,7 +10,7 @@ import pyvista as pv
 from conftest import draw, point_light
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.timing import MAX_FRAMES_IN_FLIGHT
-from pvshadows.scenes import standard_scene
+from pvshadows.tools.scenes import standard_scene
 
 
 def run_python(code):

@@ -6,14 +6,14 @@ from pathlib import Path
 
 import pytest
 
-from pvshadows.bench import (
+from pvshadows.tools.bench import (
     BenchRow,
     append_lines,
     append_planner_table,
     append_silhouette_table,
     write_table,
 )
-from pvshadows.bench_presets import choose_presets, presets_lines
+from pvshadows.tools.bench_presets import choose_presets, presets_lines
 
 ROOT = Path(__file__).parents[1]
 sys.path.insert(0, str(ROOT / "docs" / "_ext"))

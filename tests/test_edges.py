@@ -11,9 +11,9 @@ import pytest
 import pyvista as pv
 from pyvista import examples
 
-from pvshadows.fitting import spot_fit
-from pvshadows.lights import LightKind, LightPose
-from pvshadows.scenes import standard_scene
+from pvshadows.scene.fitting import spot_fit
+from pvshadows.scene.lights import LightKind, LightPose
+from pvshadows.tools.scenes import standard_scene
 
 #: Camera 0.25 above the standard scene's ground, inside the box's shadow,
 #: looking away from the light along the shadow's long edge (y = -1.95).

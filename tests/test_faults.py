@@ -7,9 +7,9 @@ import pytest
 
 from conftest import draw
 from pvshadows.passes.cube_depth import CubeDepthPass
-from pvshadows.probe import FrameFailedError
-from pvshadows.scenes import standard_scene
 from pvshadows.techniques.cubemap import CubemapTechnique
+from pvshadows.tools.scenes import standard_scene
+from pvshadows.verify.probe import FrameFailedError
 
 
 def _broken(*args, **kwargs):
@@ -96,7 +96,7 @@ def test_a_fault_at_the_end_of_the_frame_is_caught(small, monkeypatch, capfd):
 
 
 def test_a_fault_in_the_receiver_edits_leaves_vtk_shaders(small, monkeypatch):
-    from pvshadows import receivers
+    from pvshadows.shaders import edits as receivers
 
     pl = small.plotter
     pl.shadows.enable(filter="hard")

@@ -3,7 +3,7 @@
 import pyvista as pv
 
 from conftest import draw
-from pvshadows.scenes import crowd_scene
+from pvshadows.tools.scenes import crowd_scene
 
 
 def counters(pl):

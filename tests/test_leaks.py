@@ -12,7 +12,7 @@ import pyvista as pv
 from OpenGL import contextdata
 
 import pvshadows
-from pvshadows.scenes import standard_scene
+from pvshadows.tools.scenes import standard_scene
 
 for technique in sys.argv[1:]:
     scene = standard_scene(window_size=(200, 150), light="spot" if technique == "map" else "point")

@@ -5,9 +5,9 @@ import pytest
 import pyvista as pv
 
 from conftest import draw, point_light
-from pvshadows.builtin import builtin_visibility
-from pvshadows.measure import compare
-from pvshadows.scenes import standard_scene
+from pvshadows.tools.scenes import standard_scene
+from pvshadows.verify.builtin import builtin_visibility
+from pvshadows.verify.measure import compare
 
 HARD = {"filter": "hard", "resolution": 1024}
 

@@ -11,7 +11,7 @@ import pytest
 import pyvista as pv
 
 from conftest import draw, spot_box_scene
-from pvshadows.naming import ActorNames
+from pvshadows.scene.naming import ActorNames
 
 
 def test_an_unnamed_actor_is_named_by_its_kind_and_place_not_its_address():

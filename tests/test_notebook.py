@@ -9,7 +9,7 @@ import pytest
 from IPython.lib.pretty import pretty
 
 from conftest import draw, spot_box_scene
-from pvshadows.measure import Measurement
+from pvshadows.verify.measure import Measurement
 
 
 def test_last_frame_and_measure_display_as_tables():

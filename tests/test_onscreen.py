@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 from onscreen_session import CASES, STEPS, apply_camera, build
 
-from pvshadows.info import TRIALS
+from pvshadows.tools.info import TRIALS
 
 pytestmark = pytest.mark.skipif(
     shutil.which("Xvfb") is None,

@@ -5,13 +5,13 @@ import pytest
 import pyvista as pv
 
 from conftest import draw, point_light
-from pvshadows import planes
+from pvshadows.geometry.transforms import look_rotation, perspective, translation
 from pvshadows.gl.binding import opengl_for
-from pvshadows.scene import read_triangles
-from pvshadows.scenes import standard_scene
-from pvshadows.snapshot import SceneReader
+from pvshadows.scene import planes
+from pvshadows.scene.snapshot import SceneReader
+from pvshadows.scene.triangles import read_triangles
 from pvshadows.techniques import planar
-from pvshadows.transforms import look_rotation, perspective, translation
+from pvshadows.tools.scenes import standard_scene
 
 #: The issue's bound: lit-side pixels of the ground misclassified.
 BOUND = 0.005

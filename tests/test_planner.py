@@ -5,7 +5,7 @@ import pytest
 import pyvista as pv
 
 from conftest import draw, point_light
-from pvshadows.scenes import (
+from pvshadows.tools.scenes import (
     crowd_scene,
     eight_spots_scene,
     spot_light,

@@ -12,9 +12,9 @@ import pytest
 import pyvista as pv
 
 from conftest import draw
-from pvshadows.light_kit import key_light
-from pvshadows.render_target import SSAA_FACTOR, render_target
-from pvshadows.scenes import standard_scene
+from pvshadows.scene.light_kit import key_light
+from pvshadows.scene.render_target import SSAA_FACTOR, render_target
+from pvshadows.tools.scenes import standard_scene
 
 #: The plain scene's bounds (tests/test_volume.py, test_planar.py, test_maps.py).
 BOUNDS = {"volume": 0.003, "planar": 0.005, "cubemap": 0.01, "map": 0.01}

@@ -11,8 +11,8 @@ import pyvista as pv
 import trimesh
 import vtk
 
-from pvshadows.lights import LightKind, LightPose
-from pvshadows.reference import SceneMesh, ViewSpec, trace_reference
+from pvshadows.scene.lights import LightKind, LightPose
+from pvshadows.verify.reference import SceneMesh, ViewSpec, trace_reference
 
 WIDTH, HEIGHT = 160, 120
 DOWN = np.array([0.0, 0.0, -1.0])

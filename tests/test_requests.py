@@ -4,7 +4,7 @@ import pytest
 import pyvista as pv
 
 from conftest import draw, point_light
-from pvshadows.scenes import standard_scene
+from pvshadows.tools.scenes import standard_scene
 
 SMALL = (400, 300)
 

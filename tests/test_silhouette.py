@@ -1,12 +1,12 @@
-"""Tests for pvshadows.silhouette: adjacency, silhouettes and shadow-volume geometry."""
+"""Tests for pvshadows.geometry.silhouette: adjacency, silhouettes and shadow-volume geometry."""
 
 import numpy as np
 import pytest
 import pyvista as pv
 from pyvista import examples
 
-from pvshadows.closed import make_closed
-from pvshadows.silhouette import (
+from pvshadows.geometry.closed import make_closed
+from pvshadows.geometry.silhouette import (
     EdgeAdjacency,
     VolumeGeometry,
     adjacency_indices,

@@ -5,8 +5,8 @@ import pytest
 import pyvista as pv
 
 from conftest import point_light
-from pvshadows.measure import compare
-from pvshadows.scenes import standard_scene
+from pvshadows.tools.scenes import standard_scene
+from pvshadows.verify.measure import compare
 
 SIZE = {"point": 0.3, "spot": 0.3, "directional": 2.5}
 

@@ -7,7 +7,7 @@ import pytest
 from test_reference import camera_view, ground, point_light, rectangle, sphere
 
 from conftest import spot_box_scene
-from pvshadows.reference import SceneMesh, trace_reference
+from pvshadows.verify.reference import SceneMesh, trace_reference
 
 
 def test_reference_lets_one_minus_opacity_through_every_surface_crossed():

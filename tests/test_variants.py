@@ -13,9 +13,9 @@ import pytest
 import pyvista as pv
 from pyvista.core.utilities.observers import VtkErrorCatcher
 
-import pvshadows.shading
+import pvshadows.shaders.shading
 from conftest import draw, point_light
-from pvshadows.scene import vtk_id
+from pvshadows.scene.triangles import vtk_id
 
 SIZE = (240, 180)
 
@@ -149,12 +149,12 @@ def test_plotter_without_lights():
 
 def test_edit_that_does_not_land_is_reported(monkeypatch):
     # As if VTK's generated code had changed: the light hooks look for text VTK no longer writes.
-    hooks = pvshadows.shading._light_hooks
+    hooks = pvshadows.shaders.shading._light_hooks
 
     def reworded(*args):
         return [(original.replace("(df * ", "(df*"), new) for original, new in hooks(*args)]
 
-    monkeypatch.setattr(pvshadows.shading, "_light_hooks", reworded)
+    monkeypatch.setattr(pvshadows.shaders.shading, "_light_hooks", reworded)
     pl = _scene()
     pl.add_mesh(pv.Sphere(radius=0.6, center=(0, 0, 1.2)), color="tan")
     draw(pl)
@@ -167,7 +167,7 @@ def test_edit_that_does_not_land_is_reported(monkeypatch):
 
 
 def test_variant_that_does_not_compile_is_left_as_vtk_built_it(monkeypatch):
-    monkeypatch.setattr(pvshadows.shading, "_FACET_NORMAL", "\n  pvsFacetVC = ;")
+    monkeypatch.setattr(pvshadows.shaders.shading, "_FACET_NORMAL", "\n  pvsFacetVC = ;")
     pl = _scene()
     pl.add_mesh(pv.Sphere(radius=0.6, center=(0, 0, 1.2)), color="tan")
     plain = draw(pl).astype(int)

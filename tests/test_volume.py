@@ -8,11 +8,11 @@ import pyvista as pv
 from pyvista import examples
 
 from conftest import draw, point_light
-from pvshadows import volume_casters
+from pvshadows.geometry import volume_casters
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.timing import MAX_FRAMES_IN_FLIGHT
-from pvshadows.scenes import standard_scene
-from pvshadows.shading import LightShading
+from pvshadows.shaders.shading import LightShading
+from pvshadows.tools.scenes import standard_scene
 
 #: The issue's bound for pixel-exact hard shadows.
 EXACT = 0.003
@@ -217,8 +217,8 @@ def test_a_hole_cut_in_a_sphere_falls_back_or_raises():
 def test_directional_fallback_hook(monkeypatch):
     """Open casters under a directional light: no shadow until a map technique is registered."""
     import pvshadows.techniques as techniques
-    from pvshadows import planner
-    from pvshadows.lights import LightKind
+    from pvshadows.pipeline import planner
+    from pvshadows.scene.lights import LightKind
 
     def scene():
         pl = pv.Plotter(off_screen=True, window_size=[320, 240], lighting="none")

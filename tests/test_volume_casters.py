@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 import pyvista as pv
 
-from pvshadows.closed import OpenMeshError, edge_defects
-from pvshadows.silhouette import volume_geometry
-from pvshadows.volume_casters import batches, prepare_volume_mesh, winding_number
-from pvshadows.volume_zmode import hull_touches_box, light_region
+from pvshadows.geometry.closed import OpenMeshError, edge_defects
+from pvshadows.geometry.silhouette import volume_geometry
+from pvshadows.geometry.volume_casters import batches, prepare_volume_mesh, winding_number
+from pvshadows.pipeline.volume_zmode import hull_touches_box, light_region
 
 
 def faces(mesh):

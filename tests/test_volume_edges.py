@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import pyvista as pv
 
-from pvshadows.scenes import standard_scene
+from pvshadows.tools.scenes import standard_scene
 
 SMALL = (400, 300)
 

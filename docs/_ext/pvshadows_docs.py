@@ -199,10 +199,10 @@ TECHNIQUE_WORDS = {
 
 def write_package_tables(out: Path) -> None:
     """Write the techniques x lights and the quality presets tables, read from the package."""
-    from pvshadows.bench_presets import PROMISES
-    from pvshadows.lights import LightKind
-    from pvshadows.planner import AUTO_TECHNIQUE, SERVES
-    from pvshadows.settings import QUALITY_PRESETS
+    from pvshadows.model.plan import AUTO_TECHNIQUE, SERVES
+    from pvshadows.model.settings import QUALITY_PRESETS
+    from pvshadows.scene.lights import LightKind
+    from pvshadows.tools.bench_presets import PROMISES
 
     kinds = list(LightKind)
     rows = [["technique", *[f"{kind.value} light" for kind in kinds], "what"]]
@@ -219,18 +219,20 @@ def write_package_tables(out: Path) -> None:
         rows.append(
             [f"``{quality}``", *[f"``{preset[n]!r}``" if n in preset else "—" for n in names]]
         )
-    text = list_table("What each quality sets (pvshadows.settings.QUALITY_PRESETS)", rows)
+    text = list_table("What each quality sets (pvshadows.model.settings.QUALITY_PRESETS)", rows)
     (out / "presets.rst").write_text(text, encoding="utf-8")
     promises = [["quality", "promise (for every kind of light)"]]
     promises += [[f"``{quality}``", words] for quality, words in PROMISES.items()]
-    text = list_table("What each quality promises (pvshadows.bench_presets.PROMISES)", promises)
+    text = list_table(
+        "What each quality promises (pvshadows.tools.bench_presets.PROMISES)", promises
+    )
     (out / "promises.rst").write_text(text, encoding="utf-8")
     write_bench_constants(out)
 
 
 def write_bench_constants(out: Path) -> None:
     """Write reST substitutions for the bench's constants, so the pages quote the code."""
-    from pvshadows import bench
+    from pvshadows.tools import bench
 
     values = {
         "bench_size_point": f"{bench.LIGHT_SIZE['point']:g}",

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.buffers import TriangleBuffers
-from pvshadows.scene import vtk_id
-from pvshadows.snapshot import ActorState
+from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.triangles import vtk_id
 
 
 class ActorBuffers:

@@ -20,7 +20,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
-from pvshadows.report import PassReport
+from pvshadows.model.report import PassReport
 
 #: Frames a pass's timing may wait for the GPU before it is read with a wait.
 MAX_FRAMES_IN_FLIGHT = 3

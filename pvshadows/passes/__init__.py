@@ -1,1 +1,1 @@
-"""Passes that write shadow maps; the shading that reads them lives in :mod:`pvshadows.shading`."""
+"""Passes that write shadow maps (:mod:`pvshadows.shaders.shading` is what reads them)."""

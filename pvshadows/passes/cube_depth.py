@@ -7,13 +7,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.transforms import column_major, cube_face_projections, faces_touching_box
 from pvshadows.gl.buffers import TriangleBuffers
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.timing import PassTimer
+from pvshadows.model.report import PassReport
 from pvshadows.passes.gl_state import cull_faces, depth_only_state
-from pvshadows.report import PassReport
-from pvshadows.transforms import column_major, cube_face_projections, faces_touching_box
 
 
 @dataclass

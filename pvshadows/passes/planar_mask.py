@@ -3,7 +3,7 @@
 Per light, in a framebuffer of pvshadows' own the size of the viewport
 (:class:`pvshadows.gl.colour_target.ColourTarget`): the mask is cleared to 1
 (lit), then every caster is drawn with the camera's projection times the
-flattening matrix (:func:`pvshadows.planes.flattening`), multiplying the mask
+flattening matrix (:func:`pvshadows.scene.planes.flattening`), multiplying the mask
 by its transmittance (``1 - opacity``, 0 for an opaque caster). Where opaque
 casters cover a pixel it is 0 however many flattened triangles cover it,
 which is what a stencil test ("draw where not yet drawn") would give; a
@@ -31,12 +31,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.transforms import column_major
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.buffers import TriangleBuffers
 from pvshadows.gl.colour_target import ColourTarget
 from pvshadows.gl.mask_target import MaskTexture
 from pvshadows.gl.programs import bind_program, compile_files
-from pvshadows.transforms import column_major
 
 
 @dataclass

@@ -24,13 +24,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.transforms import column_major
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.buffers import EmptyArray, IndexedBuffers, TriangleBuffers
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
 from pvshadows.gl.programs import ProgramCache, ShaderCompileError, bind_program, compile_files
 from pvshadows.gl.timing import PassTimer
-from pvshadows.report import PassReport
-from pvshadows.transforms import column_major
+from pvshadows.model.report import PassReport
 
 #: Clip-space depth offset (times w) of light caps: they lie on the lit
 #: surface they came from and must lose the depth test against it. About

@@ -8,12 +8,12 @@ from typing import ClassVar, Protocol
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.timing import PassTimer
-from pvshadows.planner import LightPlan
-from pvshadows.render_target import RenderTarget, render_target
-from pvshadows.report import PassReport
-from pvshadows.shading import LightShading
-from pvshadows.snapshot import Snapshot
-from pvshadows.view import FrameView
+from pvshadows.model.plan import LightPlan
+from pvshadows.model.report import PassReport
+from pvshadows.scene.render_target import RenderTarget, render_target
+from pvshadows.scene.snapshot import Snapshot
+from pvshadows.scene.view import FrameView
+from pvshadows.shaders.shading import LightShading
 
 
 @dataclass
@@ -54,7 +54,7 @@ class FrameContext:
         """Return the size in pixels of what the renderer is drawn into this frame.
 
         The tile being drawn of a scaled screenshot, or the larger framebuffer
-        of an SSAA pass (:func:`pvshadows.render_target.render_target`).
+        of an SSAA pass (:func:`pvshadows.scene.render_target.render_target`).
         """
         return render_target(self.renderer).size
 

@@ -8,17 +8,17 @@ from typing import cast
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.transforms import translation
 from pvshadows.gl.textures import DepthCube
-from pvshadows.lights import LightKind
+from pvshadows.model.plan import LightPlan
+from pvshadows.model.report import PassReport
 from pvshadows.passes.cube_depth import CubeCaster, CubeDepthPass, caster_face_mask
-from pvshadows.planner import LightPlan
-from pvshadows.report import PassReport
-from pvshadows.scene import vtk_id
-from pvshadows.shading import LightShading
+from pvshadows.scene.lights import LightKind
+from pvshadows.scene.triangles import vtk_id
+from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
-from pvshadows.transforms import translation
 
 
 @dataclass

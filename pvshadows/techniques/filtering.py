@@ -11,9 +11,9 @@ from __future__ import annotations
 from pvshadows import _vtk as vtk
 from pvshadows.gl.sampling import DiskOffsets, RawDepthView
 from pvshadows.gl.textures import DepthTexture
-from pvshadows.glsl_library import MapLookup
-from pvshadows.settings import ShadowSettings
-from pvshadows.shading import LightShading
+from pvshadows.model.settings import ShadowSettings
+from pvshadows.shaders.library import MapLookup
+from pvshadows.shaders.shading import LightShading
 
 #: Side of the tap grid for each ``pcf_taps`` value.
 PCF_GRID = {4: 2, 16: 4, 36: 6, 64: 8}
@@ -43,13 +43,13 @@ def lookup_shading(
     Returns
     -------
     LightShading
-        The light's :class:`~pvshadows.glsl_library.MapLookup` (it reads the
+        The light's :class:`~pvshadows.shaders.library.MapLookup` (it reads the
         uniforms ``pvsDepth{i}``, ``pvsParams{i}``, ``pvsViewToLight{i}``,
         ``pvsBias{i}``, ...) and the visibility it sets.
 
     Examples
     --------
-    >>> from pvshadows.settings import ShadowSettings
+    >>> from pvshadows.model.settings import ShadowSettings
     >>> from pvshadows.techniques.filtering import lookup_shading
     >>> shading = lookup_shading("sun", 2, ShadowSettings(filter="pcf", pcf_taps=4))
     >>> shading.visibility, shading.needs[0].group, shading.needs[0].taps

@@ -14,20 +14,20 @@ from dataclasses import dataclass
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.fitting import SunFit, spot_fit, spot_shadowing_casters, sun_fit, sun_rotation
+from pvshadows.geometry.transforms import translation
 from pvshadows.gl.textures import DepthMap
-from pvshadows.lights import LightKind
+from pvshadows.model.plan import LightPlan
+from pvshadows.model.report import PassReport
+from pvshadows.model.settings import ShadowSettings
 from pvshadows.passes.map_depth import MapCaster, MapDepthPass
-from pvshadows.planner import LightPlan
-from pvshadows.report import PassReport
-from pvshadows.scene import vtk_id
-from pvshadows.settings import ShadowSettings
-from pvshadows.shading import LightShading
+from pvshadows.scene.fitting import SunFit, spot_fit, spot_shadowing_casters, sun_fit, sun_rotation
+from pvshadows.scene.lights import LightKind
+from pvshadows.scene.triangles import vtk_id
+from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
 from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
-from pvshadows.transforms import translation
 
 
 @dataclass

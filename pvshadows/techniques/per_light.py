@@ -7,10 +7,10 @@ from typing import ClassVar, Generic, Protocol, TypeVar
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.planner import LightPlan
-from pvshadows.scene import vtk_id
-from pvshadows.settings import ShadowSettings
-from pvshadows.snapshot import ActorState
+from pvshadows.model.plan import LightPlan
+from pvshadows.model.settings import ShadowSettings
+from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.triangles import vtk_id
 from pvshadows.techniques.filtering import FilterBindings
 
 

@@ -3,13 +3,13 @@
 The cheapest technique, for every kind of light, and exact on the plane it
 serves. Per frame and light:
 
-1. the receiving plane is chosen (:func:`pvshadows.planes.choose_plane`):
+1. the receiving plane is chosen (:func:`pvshadows.scene.planes.choose_plane`):
    an actor named with ``pl.shadows.set_receiver(actor, plane=True)``, or
    else a flat receiver found on its own (the largest, if several), and
    oriented so that the light is on its positive side;
 2. every caster on the light's side of the plane is drawn through the
    flattening matrix ``(plane . light) I - light plane^T``
-   (:func:`pvshadows.planes.flattening`) and the camera's projection into
+   (:func:`pvshadows.scene.planes.flattening`) and the camera's projection into
    the light's *mask*, a screen-space texture the size of the viewport,
    cleared to 1 (lit) and written 0 (:mod:`pvshadows.passes.planar_mask`).
 
@@ -34,18 +34,18 @@ from typing import ClassVar
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.transforms import translation
 from pvshadows.gl.mask_target import MaskTexture
-from pvshadows.lights import LightKind
+from pvshadows.model.plan import LightPlan
+from pvshadows.model.report import PassReport
 from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
-from pvshadows.planes import PlaneChoice, choose_plane, facing, flattening
-from pvshadows.planner import LightPlan
-from pvshadows.report import PassReport
-from pvshadows.scene import vtk_id
-from pvshadows.shading import LightShading
-from pvshadows.snapshot import ActorState
+from pvshadows.scene.lights import LightKind
+from pvshadows.scene.planes import PlaneChoice, choose_plane, facing, flattening
+from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.translucency import transmittance
+from pvshadows.scene.triangles import vtk_id
+from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
-from pvshadows.transforms import translation
-from pvshadows.translucency import transmittance
 
 _PASS = "planar mask"
 
@@ -155,7 +155,7 @@ def caster_matrices(
     --------
     >>> import numpy as np
     >>> from pvshadows.techniques.planar import caster_matrices
-    >>> from pvshadows.transforms import translation
+    >>> from pvshadows.geometry.transforms import translation
     >>> ground, bulb = np.array([0, 0, 1.0, 0]), np.array([0, 0, 4.0, 1])
     >>> to_clip, plane, w = caster_matrices(
     ...     translation([1, 0, 2]), ground, bulb, np.eye(4), np.eye(4)

@@ -10,7 +10,7 @@ viewport (:mod:`pvshadows.gl.mask_target`):
    (``w = 0``; with a parallel projection, to a finite distance beyond the
    scene), with light and dark caps for z-fail — counted in the 8-bit
    stencil, z-pass when the camera is outside every volume and z-fail
-   otherwise (:mod:`pvshadows.volume_zmode`), with depth clamping, in batches
+   otherwise (:mod:`pvshadows.pipeline.volume_zmode`), with depth clamping, in batches
    of at most 255 bodies;
 3. the count turned into the light's *shadow mask* (1 lit, 0 in a volume).
 
@@ -20,12 +20,12 @@ and ambient light stays everywhere.
 
 Extrusion runs on the GPU (``extrude="gpu"``: a geometry shader fed
 ``GL_TRIANGLES_ADJACENCY`` from pvshadows' own index buffer, built once per
-mesh with :func:`pvshadows.silhouette.adjacency_indices`; VTK's own mapper
+mesh with :func:`pvshadows.geometry.silhouette.adjacency_indices`; VTK's own mapper
 draws plain triangles and is not involved) or on the CPU (``extrude="cpu"``:
-:func:`pvshadows.silhouette.volume_geometry`, vectorised numpy, rebuilt only
+:func:`pvshadows.geometry.silhouette.volume_geometry`, vectorised numpy, rebuilt only
 when the light or the caster moved).
 
-Casters must be closed (:mod:`pvshadows.volume_casters`). An open caster
+Casters must be closed (:mod:`pvshadows.geometry.volume_casters`). An open caster
 either raises (``on_open="raise"``) or casts its shadow from a shadow map
 instead (``on_open="fallback"``): the light's visibility is then the volume
 mask times that map's lookup over the open casters only
@@ -44,22 +44,27 @@ import numpy as np
 import pyvista as pv
 
 from pvshadows import _vtk as vtk
-from pvshadows.closed import OpenMeshError
+from pvshadows.geometry.closed import OpenMeshError
+from pvshadows.geometry.silhouette import volume_geometry
+from pvshadows.geometry.volume_casters import (
+    VolumeMesh,
+    batches,
+    prepare_volume_mesh,
+    winding_number,
+)
 from pvshadows.gl.buffers import IndexedBuffers
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
-from pvshadows.lights import LightKind
+from pvshadows.model.plan import LightPlan
+from pvshadows.model.report import PassReport
 from pvshadows.passes.volume_stencil import DepthDraw, VolumeDraw, VolumePasses
-from pvshadows.planner import LightPlan
-from pvshadows.render_target import tiled_viewport
-from pvshadows.report import PassReport
-from pvshadows.scene import ActorTriangles, vtk_id
-from pvshadows.shading import LightShading
-from pvshadows.silhouette import volume_geometry
-from pvshadows.snapshot import ActorState, Snapshot
+from pvshadows.pipeline.volume_zmode import choose_zmode
+from pvshadows.scene.lights import LightKind
+from pvshadows.scene.render_target import tiled_viewport
+from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.translucency import transmittance
+from pvshadows.scene.triangles import ActorTriangles, vtk_id
+from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, Technique
-from pvshadows.translucency import transmittance
-from pvshadows.volume_casters import VolumeMesh, batches, prepare_volume_mesh, winding_number
-from pvshadows.volume_zmode import choose_zmode
 
 #: The technique that casts the shadows of open casters (``on_open="fallback"``),
 #: per kind of light. A name that is not (yet) a registered technique serving
@@ -164,7 +169,7 @@ def translucent_batches(
     Returns
     -------
     batches : list of list of tuple
-        As :func:`pvshadows.volume_casters.batches`: opaque casters first.
+        As :func:`pvshadows.geometry.volume_casters.batches`: opaque casters first.
     passing : list of float
         Per batch, the light its shadow lets through: 0 for opaque casters,
         ``(1 - opacity)`` squared for a translucent closed caster (a shadow
@@ -210,7 +215,7 @@ def combine_shadings(first: LightShading, second: LightShading) -> LightShading:
 
     Examples
     --------
-    >>> from pvshadows.shading import LightShading
+    >>> from pvshadows.shaders.shading import LightShading
     >>> from pvshadows.techniques.volume import combine_shadings
     >>> both = combine_shadings(LightShading(0, "a", sources=("x",)), LightShading(0, "b"))
     >>> both.visibility, both.sources
@@ -481,7 +486,7 @@ class VolumeTechnique:
     ) -> tuple[str, LightPlan] | None:
         if not open_casters:
             return None
-        from pvshadows.planner import SERVES
+        from pvshadows.model.plan import SERVES
         from pvshadows.techniques import TECHNIQUE_CLASSES
 
         name = FALLBACK_TECHNIQUES.get(plan.kind)

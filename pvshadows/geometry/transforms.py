@@ -1,0 +1,251 @@
+"""Matrices for the shadow passes, built in double precision.
+
+Every matrix handed to the GPU is composed here in float64 and relative to
+the light or the camera, so float32 on the GPU only ever holds coordinates of
+the size of the scene, not of its distance from the origin.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pvshadows import _vtk as vtk
+
+#: Forward and up axes of the six cube faces in GL order (+X, -X, +Y, -Y, +Z, -Z),
+#: chosen so that a face rendered with :func:`cube_face_rotation` lands where a
+#: ``samplerCube`` lookup with the light-to-point vector reads it.
+CUBE_FACE_AXES = (
+    ((1.0, 0.0, 0.0), (0.0, -1.0, 0.0)),
+    ((-1.0, 0.0, 0.0), (0.0, -1.0, 0.0)),
+    ((0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
+    ((0.0, -1.0, 0.0), (0.0, 0.0, -1.0)),
+    ((0.0, 0.0, 1.0), (0.0, -1.0, 0.0)),
+    ((0.0, 0.0, -1.0), (0.0, -1.0, 0.0)),
+)
+
+
+def look_rotation(forward: np.ndarray, up: np.ndarray) -> np.ndarray:
+    """Return the 4x4 rotation of a camera at the origin looking along ``forward``.
+
+    Parameters
+    ----------
+    forward, up : numpy.ndarray
+        Viewing direction and approximate up vector (need not be unit).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(4, 4)`` float64 matrix taking world axes to the camera's axes
+        (x right, y up, looking down -z).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.geometry.transforms import look_rotation
+    >>> rotation = look_rotation(np.array([0, 0, -1.0]), np.array([0, 1.0, 0]))
+    >>> bool(np.allclose(rotation, np.eye(4)))
+    True
+    """
+    f = np.asarray(forward, float) / np.linalg.norm(forward)
+    right = np.cross(f, up)
+    right /= np.linalg.norm(right)
+    true_up = np.cross(right, f)
+    rotation = np.eye(4)
+    rotation[0, :3], rotation[1, :3], rotation[2, :3] = right, true_up, -f
+    return rotation
+
+
+def perspective(fov_y_degrees: float, aspect: float, near: float, far: float) -> np.ndarray:
+    """Return an OpenGL perspective projection matrix (float64, 4x4).
+
+    Parameters
+    ----------
+    fov_y_degrees : float
+        Full vertical field of view.
+    aspect : float
+        Width over height.
+    near, far : float
+        Positive clip distances.
+
+    Returns
+    -------
+    numpy.ndarray
+        The projection, mapping the view frustum to the NDC cube.
+
+    Examples
+    --------
+    >>> from pvshadows.geometry.transforms import perspective
+    >>> m = perspective(90.0, 1.0, 1.0, 10.0)
+    >>> round(float(m[0, 0]), 9), float(m[3, 2])
+    (1.0, -1.0)
+    """
+    f = 1.0 / np.tan(np.radians(fov_y_degrees) / 2.0)
+    m = np.zeros((4, 4))
+    m[0, 0], m[1, 1] = f / aspect, f
+    m[2, 2] = (far + near) / (near - far)
+    m[2, 3] = 2.0 * far * near / (near - far)
+    m[3, 2] = -1.0
+    return m
+
+
+def cube_face_rotation(face: int) -> np.ndarray:
+    """Return the rotation of cube face ``face`` (0..5, GL order).
+
+    Parameters
+    ----------
+    face : int
+        Face index: +X, -X, +Y, -Y, +Z, -Z.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(4, 4)`` float64 rotation for a camera at the light.
+
+    Examples
+    --------
+    >>> from pvshadows.geometry.transforms import cube_face_rotation
+    >>> cube_face_rotation(0)[2, :3].tolist()
+    [-1.0, -0.0, -0.0]
+    """
+    forward, up = CUBE_FACE_AXES[face]
+    return look_rotation(np.array(forward), np.array(up))
+
+
+def cube_face_projections(near: float, far: float) -> np.ndarray:
+    """Return the six face matrices (90-degree projection times rotation).
+
+    Parameters
+    ----------
+    near, far : float
+        Clip distances of each face's frustum (depth clamp makes them
+        matter only for precision of the clip-space ``z``).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(6, 4, 4)`` float64, acting on light-centred world positions.
+
+    Examples
+    --------
+    >>> from pvshadows.geometry.transforms import cube_face_projections
+    >>> cube_face_projections(0.1, 10.0).shape
+    (6, 4, 4)
+    """
+    projection = perspective(90.0, 1.0, near, far)
+    return np.stack([projection @ cube_face_rotation(face) for face in range(6)])
+
+
+def faces_touching_box(box: np.ndarray) -> int:
+    """Return a bit mask of the cube faces whose frustum may hold a box.
+
+    Parameters
+    ----------
+    box : numpy.ndarray
+        ``(2, 3)`` min/max corners relative to the light.
+
+    Returns
+    -------
+    int
+        Bit ``f`` is set when face ``f``'s 90-degree pyramid and the box may
+        overlap (conservative: never misses an overlap).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.geometry.transforms import faces_touching_box
+    >>> faces_touching_box(np.array([[2.0, -0.5, -0.5], [3.0, 0.5, 0.5]]))  # only +X
+    1
+    """
+    mask = 0
+    for face, (forward, _) in enumerate(CUBE_FACE_AXES):
+        axis = int(np.argmax(np.abs(forward)))
+        sign = forward[axis]
+        inside = max(sign * box[0, axis], sign * box[1, axis]) >= 0.0
+        for other in range(3):
+            if other == axis:
+                continue
+            for side in (-1.0, 1.0):
+                # plane: sign * p[axis] + side * p[other] >= 0
+                coeff = np.zeros(3)
+                coeff[axis], coeff[other] = sign, side
+                best = np.maximum(coeff * box[0], coeff * box[1]).sum()
+                if best < 0.0:
+                    inside = False
+        if inside:
+            mask |= 1 << face
+    return mask
+
+
+def translation(offset: np.ndarray) -> np.ndarray:
+    """Return the 4x4 matrix translating by ``offset``.
+
+    Parameters
+    ----------
+    offset : numpy.ndarray
+        ``(3,)`` translation.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(4, 4)`` float64.
+
+    Examples
+    --------
+    >>> from pvshadows.geometry.transforms import translation
+    >>> translation([1, 2, 3])[:3, 3].tolist()
+    [1.0, 2.0, 3.0]
+    """
+    m = np.eye(4)
+    m[:3, 3] = offset
+    return m
+
+
+def to_vtk_matrix(matrix: np.ndarray) -> vtk.vtkMatrix4x4:
+    """Return a ``vtkMatrix4x4`` holding ``matrix``.
+
+    Parameters
+    ----------
+    matrix : numpy.ndarray
+        ``(4, 4)`` values.
+
+    Returns
+    -------
+    vtk.vtkMatrix4x4
+        A new VTK matrix.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.geometry.transforms import to_vtk_matrix
+    >>> to_vtk_matrix(np.eye(4)).GetElement(2, 2)
+    1.0
+    """
+    result = vtk.vtkMatrix4x4()
+    for i in range(4):
+        for j in range(4):
+            result.SetElement(i, j, float(matrix[i, j]))
+    return result
+
+
+def column_major(matrices: np.ndarray) -> np.ndarray:
+    """Return float32 values of one or more 4x4 matrices in OpenGL (column) order.
+
+    Parameters
+    ----------
+    matrices : numpy.ndarray
+        ``(4, 4)`` or ``(k, 4, 4)`` row-major matrices acting on column vectors.
+
+    Returns
+    -------
+    numpy.ndarray
+        Flat float32 array for ``glUniformMatrix4fv`` without transpose.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.geometry.transforms import column_major, translation
+    >>> column_major(translation([1, 2, 3]))[12:15].tolist()
+    [1.0, 2.0, 3.0]
+    """
+    m = np.asarray(matrices, dtype=np.float64)
+    return np.ascontiguousarray(np.swapaxes(m, -1, -2), dtype=np.float32).ravel()

@@ -1,0 +1,312 @@
+"""Runs pvshadows inside one renderer's frames.
+
+A renderer ``StartEvent`` observer runs before VTK draws anything: it reads
+the scene, asks the planner what each light does, brings the shadow maps up
+to date, binds them, and sets every receiver's shader edits and uniforms. An
+``EndEvent`` observer frees the texture units and reads the passes' GPU
+times into :attr:`RendererShadows.last_frame`.
+"""
+
+from __future__ import annotations
+
+import traceback
+import warnings
+from collections.abc import Callable
+from pathlib import Path
+
+from pvshadows import _vtk as vtk
+from pvshadows.gl.actor_buffers import ActorBuffers
+from pvshadows.gl.buffers import forget_pointer_records
+from pvshadows.gl.texture_units import park_active_unit
+from pvshadows.gl.timing import PassTimer
+from pvshadows.model.plan import LightPlan
+from pvshadows.model.report import FrameFailure, FrameReport, LightReport
+from pvshadows.model.settings import ShadowSettings
+from pvshadows.pipeline.planner import plan_frame
+from pvshadows.pipeline.reach import ReachCache
+from pvshadows.scene.impostors import LIGHT_SPACE_TECHNIQUES, lit_without_triangles
+from pvshadows.scene.snapshot import SceneReader, Snapshot
+from pvshadows.scene.triangles import vtk_id
+from pvshadows.scene.view import FrameView
+from pvshadows.shaders.edits import ReceiverEdits
+from pvshadows.shaders.shading import PROBE_UNIFORM, LightShading, strength_uniform
+from pvshadows.techniques import TECHNIQUE_CLASSES
+from pvshadows.techniques.base import FrameContext, Technique
+
+
+class RendererShadows:
+    """Shadows for the lights and actors of one renderer.
+
+    Parameters
+    ----------
+    renderer : vtk.vtkRenderer
+        The renderer.
+    settings_for : callable
+        Returns a light's settings, or ``None`` when it casts no shadow.
+    reader : SceneReader
+        Reads the actors and their roles each frame.
+    """
+
+    def __init__(
+        self,
+        renderer: vtk.vtkRenderer,
+        settings_for: Callable[[vtk.vtkLight], ShadowSettings | None],
+        reader: SceneReader,
+    ) -> None:
+        self.renderer = renderer
+        self._settings_for = settings_for
+        self._reader = reader
+        self._observers = [
+            renderer.AddObserver(vtk.vtkCommand.StartEvent, self._on_start),
+            renderer.AddObserver(vtk.vtkCommand.EndEvent, self._on_end),
+        ]
+        self._edits = ReceiverEdits()
+        self._warned: set[tuple[str, str]] = set()
+        #: What each spot light reached, kept between frames (``reach.tests`` counts cone tests).
+        self.reach = ReachCache()
+        self._window: vtk.vtkOpenGLRenderWindow | None = None
+        self._timer: PassTimer | None = None
+        self._buffers: ActorBuffers | None = None
+        self._techniques: dict[str, Technique] = {}
+        self._frame = 0
+        self._active: list[Technique] = []
+        self.probe_index = -1
+        self.plans: list[LightPlan] = []
+        self.snapshot: Snapshot | None = None
+        self.last_frame = FrameReport()
+        #: The exception that made the last frame draw without shadows, else ``None``.
+        self.error: Exception | None = None
+        self._where = ""
+        self._building = FrameReport()
+        #: Let techniques draw debug overlays (``draw_debug``) over the finished frame.
+        self.show_debug = False
+        self._context: FrameContext | None = None
+
+    def technique(self, name: str) -> Technique:
+        """Return the object running technique ``name`` in this renderer.
+
+        Parameters
+        ----------
+        name : str
+            Technique name, e.g. ``"cubemap"``.
+
+        Returns
+        -------
+        Technique
+            The technique's state (its maps), created on first use.
+        """
+        if name not in self._techniques:
+            self._techniques[name] = TECHNIQUE_CLASSES[name](self._window)
+        return self._techniques[name]
+
+    def _start_gl(self) -> None:
+        window = self.renderer.GetRenderWindow()
+        if self._window is window:
+            return
+        self._window = window
+        self._timer = PassTimer(window)
+        self._buffers = ActorBuffers(window)
+        self._techniques = {}
+
+    def _on_start(self, renderer: vtk.vtkRenderer, event: str) -> None:
+        self._frame += 1
+        self._where = "reading the scene"
+        self._building = FrameReport(frame=self._frame)
+        try:
+            self._run_frame()
+            self.error = None
+        except Exception as error:
+            self._fail(error)
+
+    def _run_frame(self) -> None:
+        self._start_gl()
+        assert self._buffers is not None and self._timer is not None  # made by _start_gl
+        renderer = self.renderer
+        renderer.UpdateLightsGeometryToFollowCamera()
+        snapshot = self._reader.read(renderer)
+        view = FrameView.of(renderer)
+        self._where = "planning"
+        plans = plan_frame(renderer, snapshot, self._settings_for, self.reach, view)
+        context = FrameContext(
+            self._window,
+            renderer,
+            renderer.GetActiveCamera(),
+            snapshot,
+            self._frame,
+            self._buffers,
+            self._timer,
+            view,
+        )
+        self._context = context
+        report = self._building
+        uniforms: dict[str, object] = {PROBE_UNIFORM: self.probe_index}
+        shadings = []
+        light_space: list[LightShading] = []
+        self._active = []
+        for plan in plans:
+            light_report = LightReport(
+                plan.index, plan.kind.value, plan.technique, notes=plan.notes
+            )
+            report.lights.append(light_report)
+            if plan.technique is None:
+                continue
+            self._where = f"light {plan.index} ({plan.kind.value}, {plan.technique})"
+            technique = self.technique(plan.technique)
+            light_report.passes = technique.update(plan, context)
+            shadings.append(technique.shading(plan))
+            assert plan.settings is not None  # a light with a technique has its settings
+            uniforms[strength_uniform(plan.vtk_index)] = plan.settings.strength
+            if plan.technique in LIGHT_SPACE_TECHNIQUES:
+                light_space.append(shadings[-1])
+            if technique not in self._active:
+                self._active.append(technique)
+            uniforms.update(technique.activate(plan, context))
+        self._note_impostors(plans, snapshot)
+        self._where = "keeping only this frame's maps"
+        park_active_unit(self._window)
+        for technique in self._techniques.values():
+            technique.keep_only(plans)
+        if snapshot is not self.snapshot:
+            self._buffers.keep_only(snapshot.actors)
+        self._where = "receiver shader edits"
+        self._apply_edits(snapshot, shadings, uniforms, light_space)
+        self.plans, self.snapshot, self.last_frame = plans, snapshot, report
+
+    def _note_impostors(self, plans: list[LightPlan], snapshot: Snapshot) -> None:
+        """Say under each shadowed light what the actors without triangles do."""
+        names = [
+            self._reader.name_of(actor)
+            for actor in snapshot.bystanders
+            if self._reader.receiving.get(vtk_id(actor), True) and lit_without_triangles(actor)
+        ]
+        if not names:
+            return
+        listed = ", ".join(names)
+        for plan in plans:
+            if plan.technique is None:
+                continue
+            if plan.technique in LIGHT_SPACE_TECHNIQUES:
+                plan.notes.append(
+                    f"points or lines without triangles receive, cast nothing: {listed}"
+                )
+            else:
+                plan.notes.append(
+                    f"points or lines without triangles stay lit by this {plan.technique} light "
+                    f"(its mask covers triangles only) and cast nothing: {listed}"
+                )
+
+    def _fail(self, error: Exception) -> None:
+        """Draw this frame unshadowed: undo every edit, drop every map, say so once per fault.
+
+        Nothing raised here leaves the VTK observer: a clean-up step that
+        fails too is named in the report instead.
+        """
+        self.error = error
+        where = f"{self._where}{_raised_in(error)}"
+        troubles = self._undo()
+        failure = FrameFailure(self._frame, where, f"{type(error).__name__}: {error}", troubles)
+        previous = self.last_frame.failure
+        if previous is not None and previous.same_fault(failure):
+            failure.repeats = previous.repeats + 1
+        report = self._building
+        for light in report.lights:
+            light.technique, light.passes = None, []
+        report.failure = failure
+        self.plans, self.last_frame = [], report
+        if failure.repeats == 1:
+            warnings.warn(f"pvshadows drew {failure}", stacklevel=1)
+
+    def _undo(self) -> list[str]:
+        """Leave receivers' shaders as VTK built them and release the maps; return what failed."""
+        troubles = []
+        steps = [(f"deactivating {type(t).__name__}", t.deactivate) for t in self._active]
+        steps += [(f"releasing {type(t).__name__}", t.release) for t in self._techniques.values()]
+        if self._timer is not None:
+            steps.append(("collecting GPU times", self._timer.collect))
+        for what, step in steps:
+            try:
+                step()
+            except Exception as error:
+                troubles.append(f"{what}: {type(error).__name__}: {error}")
+        troubles += self._edits.clear()
+        self._active = []
+        self._techniques = {}
+        self._context = None
+        return troubles
+
+    def _apply_edits(
+        self, snapshot: Snapshot, shadings: list, uniforms: dict, light_space: list
+    ) -> None:
+        lit_points = {
+            vtk_id(actor)
+            for actor in snapshot.bystanders
+            if light_space
+            and self._reader.receiving.get(vtk_id(actor), True)
+            and lit_without_triangles(actor)
+        }
+        self._edits.update(snapshot, shadings, uniforms, light_space, lit_points)
+
+    def _on_end(self, renderer: vtk.vtkRenderer, event: str) -> None:
+        if self.error is not None:
+            return
+        try:
+            self._finish_frame()
+        except Exception as error:
+            self._fail(error)
+
+    def _finish_frame(self) -> None:
+        if self.show_debug and self.probe_index < 0 and self._context is not None:
+            self._where = "drawing the debug overlay"
+            for technique in self._active:
+                draw = getattr(technique, "draw_debug", None)
+                if draw is not None:
+                    draw(self._context)
+        self._where = "the end of the frame"
+        for technique in self._active:
+            technique.deactivate()
+        self._active = []
+        if self._timer is not None:
+            self._timer.collect()
+        self._report_receivers()
+
+    def _report_receivers(self) -> None:
+        """Name in ``last_frame`` (and warn once) each receiver whose edits failed this frame."""
+        for key, (actor, problem) in self._edits.problems().items():
+            name = self._reader.name_of(actor)
+            self.last_frame.receivers.append(f"{name}: {problem}")
+            if (key, problem) not in self._warned:
+                self._warned.add((key, problem))
+                warnings.warn(f"pvshadows: receiver {name}: {problem}", stacklevel=1)
+
+    def _clear_edits(self) -> None:
+        self._edits.clear()
+
+    def detach(self) -> None:
+        """Remove the observers and every shader edit, and release GPU resources."""
+        for tag in self._observers:
+            self.renderer.RemoveObserver(tag)
+        self._observers = []
+        self._clear_edits()
+        window = self._window
+        if window is not None and window.GetInitialized():
+            window.MakeCurrent()
+            for technique in self._techniques.values():
+                technique.release()
+            if self._buffers is not None:
+                self._buffers.release()
+            if self._timer is not None:
+                self._timer.release()
+            forget_pointer_records()
+        self._techniques.clear()
+        self._window = None
+
+
+def _raised_in(error: Exception) -> str:
+    """Return where in pvshadows ``error`` was raised, e.g. ``" in CubeDepthPass.render"``."""
+    package = str(Path(__file__).parent)
+    inside = [
+        frame
+        for frame, _ in traceback.walk_tb(error.__traceback__)
+        if frame.f_code.co_filename.startswith(package)
+    ]
+    return f" in {inside[-1].f_code.co_qualname}" if inside else ""

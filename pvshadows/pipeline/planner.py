@@ -1,0 +1,192 @@
+"""Decides, each frame, what every light does: the only place such decisions are made.
+
+A light casts only when it is on, has intensity, and some caster and some
+receiver the camera sees are in its reach (a spot light's cone; everything
+for point and directional lights). Its casters are those in its reach. Its
+technique follows its kind, its settings and the quality asked for: with
+``technique="auto"``, planar shadows when the only receiver is one plane
+(then objects cannot shadow each other, so nothing is lost), else a cube map
+for a point light, a 2D map for spot and directional lights, and shadow
+volumes for ``quality="exact"``. What each
+technique then reuses (maps whose light and casters did not change, cube
+faces without casters) it reports in the same frame's words.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+
+import numpy as np
+
+from pvshadows import _vtk as vtk
+from pvshadows.model.plan import AUTO_TECHNIQUE, SERVES, LightPlan
+from pvshadows.model.settings import ShadowSettings
+from pvshadows.pipeline.reach import ReachCache
+from pvshadows.scene.culling import boxes_in_frustum
+from pvshadows.scene.light_kit import unshadowed_reason
+from pvshadows.scene.lights import LightKind, LightPose, casts_light, light_kind, light_pose
+from pvshadows.scene.planes import sole_plane
+from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.triangles import vtk_id
+from pvshadows.scene.view import FrameView
+
+#: A point light's casters within a cone of this half angle (degrees) get a map of that cone.
+FIT_CONE_BELOW = 30.0
+#: Casters' radius over their distance below which a point light's rays count as parallel.
+PARALLEL_BELOW = 2e-4
+
+
+def _technique_for(
+    kind: LightKind, settings: ShadowSettings, only_a_plane: bool
+) -> tuple[str | None, str]:
+    if settings.technique == "auto":
+        if only_a_plane:
+            return "planar", (
+                f"auto chose planar for a {kind.value} light: the only receiver is one plane, "
+                "so flattening the casters onto it is exact and the cheapest"
+            )
+        if settings.quality == "exact":
+            return "volume", (
+                f"auto chose volume for a {kind.value} light: quality='exact' asks for "
+                "pixel-exact hard shadows"
+            )
+        technique = AUTO_TECHNIQUE[kind]
+        return technique, (
+            f"auto chose {technique} for a {kind.value} light (quality={settings.quality!r})"
+        )
+    if kind not in SERVES[settings.technique]:
+        chosen, _ = _technique_for(kind, replace(settings, technique="auto"), only_a_plane)
+        return chosen, (
+            f"technique {settings.technique!r} cannot serve a {kind.value} light: "
+            f"it casts with {chosen}, auto's choice, instead"
+        )
+    return settings.technique, f"{settings.technique} as configured"
+
+
+def plan_frame(
+    renderer: vtk.vtkRenderer,
+    snapshot: Snapshot,
+    settings_for: Callable[[vtk.vtkLight], ShadowSettings | None],
+    reach: ReachCache | None = None,
+    view: FrameView | None = None,
+) -> list[LightPlan]:
+    """Plan every light of a renderer for this frame.
+
+    Parameters
+    ----------
+    renderer : vtk.vtkRenderer
+        The renderer; its lights are read in order.
+    snapshot : Snapshot
+        Its actors this frame.
+    settings_for : callable
+        Returns a light's settings, or ``None`` if shadows are not enabled
+        for it.
+    reach : ReachCache, optional
+        What each spot light reached in earlier frames, so only changed
+        actors and moved lights are tested again; a fresh one by default.
+    view : FrameView, optional
+        This frame's camera; built from the renderer by default.
+
+    Returns
+    -------
+    list of LightPlan
+        One plan per light, in the renderer's order.
+    """
+    plans = []
+    vtk_index = 0
+    lights = renderer.GetLights()
+    lights.InitTraversal()
+    reach = ReachCache() if reach is None else reach
+    casters = snapshot.casters
+    view = FrameView.of(renderer) if view is None else view
+    in_view = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
+    seen = [r for r, shown in zip(snapshot.receivers, in_view, strict=True) if shown]
+    only_a_plane = sole_plane(snapshot.receivers) is not None
+    for index in range(lights.GetNumberOfItems()):
+        light = lights.GetNextItem()
+        plan = LightPlan(light, index, vtk_index, light_kind(light), settings_for(light))
+        if light.GetSwitch():
+            vtk_index += 1
+        plans.append(plan)
+        if plan.settings is None:
+            plan.notes.append(unshadowed_reason(light, renderer))
+            continue
+        if not casts_light(light):
+            plan.notes.append(
+                "the light is off or has zero intensity: it casts nothing and costs nothing"
+            )
+            continue
+        if plan.settings.strength == 0.0:
+            plan.notes.append("strength=0: its shadows would remove nothing, so none is drawn")
+            continue
+        if light.LightTypeIsHeadlight():
+            plan.notes.append(
+                "a headlight's shadows hide behind the objects that cast them: none drawn"
+            )
+            continue
+        try:
+            pose = light_pose(light)
+        except ValueError as error:
+            plan.notes.append(f"casts nothing: {error}")
+            continue
+        technique, why = _technique_for(plan.kind, plan.settings, only_a_plane)
+        if technique is None:
+            plan.notes.append(why)
+            continue
+        key = vtk_id(light)
+        reached = [r for r, hit in zip(seen, reach.reaches(key, pose, seen), strict=True) if hit]
+        if not reached:
+            plan.notes.append(
+                "no receiver the camera sees is in the light's reach: it casts nothing and "
+                "costs nothing"
+                if seen
+                else "the camera sees no receiver: the light casts nothing and costs nothing"
+            )
+            continue
+        within = [
+            c for c, hit in zip(casters, reach.reaches(key, pose, casters), strict=True) if hit
+        ]
+        if not within:
+            plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
+            continue
+        plan.notes.append(why)
+        if technique == "cubemap" and pose.kind is LightKind.POINT:
+            technique, pose = _fit_far_point(pose, within, plan.notes)
+        if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
+            plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
+        plan.pose, plan.casters, plan.technique = pose, within, technique
+    reach.keep_only({vtk_id(plan.light) for plan in plans}, snapshot.actors)
+    return plans
+
+
+def _fit_far_point(
+    pose: LightPose, casters: list[ActorState], notes: list[str]
+) -> tuple[str, LightPose]:
+    """Give a point light whose casters subtend a small angle a perspective map of their cone.
+
+    Seen from far away, casters cover a few texels of one cube face and the
+    texel-sized biases swallow their shadows; a map aimed at them spends
+    every texel on them, at any distance. Receivers outside the cone stay
+    lit (nothing there can shadow them).
+    """
+    lo = np.min([c.bounds[0] for c in casters], axis=0)
+    hi = np.max([c.bounds[1] for c in casters], axis=0)
+    centre = (lo + hi) / 2.0
+    distance = float(np.linalg.norm(centre - pose.position))
+    radius = float(np.linalg.norm(hi - lo)) / 2.0
+    if distance <= radius / np.sin(np.radians(FIT_CONE_BELOW)):
+        return "cubemap", pose
+    half = float(np.degrees(np.arcsin(radius / distance)))
+    direction = (centre - pose.position) / distance
+    if radius / distance < PARALLEL_BELOW:
+        notes.append(
+            f"the casters subtend {2 * half:.3g} degrees from the light: its rays are "
+            "parallel there to a tenth of a texel, so an orthographic map along them"
+        )
+        return "map", LightPose(LightKind.DIRECTIONAL, pose.position, direction, 180.0)
+    notes.append(
+        f"the casters subtend {2 * half:.3g} degrees from the light: a perspective map "
+        "aimed at them instead of a cube"
+    )
+    return "map", LightPose(LightKind.SPOT, pose.position, direction, half)

@@ -1,0 +1,216 @@
+"""Z-pass or z-fail: whether the camera may be inside a shadow volume this frame.
+
+Z-pass counts the volume faces in front of the visible surface, starting
+from zero at the camera; it is wrong where the camera itself is inside a
+volume. Z-fail (Carmack's reverse) counts the faces behind the surface and
+is always right once the volumes are capped and nothing is clipped at the
+far plane, but it draws the caps and covers more pixels. So the choice is
+made per light and per frame, conservatively, on the CPU:
+
+A point ``x`` lies in the shadow volume of a caster only if the segment from
+the light to ``x`` meets the caster, hence its bounding box. The points the
+view rays start from (the camera and the near-plane rectangle, with depth
+clamping the rays start at the camera) lie in the convex hull of the
+camera's near region; if the hull of that region and the light (swept
+towards the light to beyond the box for a directional light) misses every
+caster's box, no view ray starts inside a volume and z-pass is right.
+Otherwise z-fail is used.
+
+A parallel projection cannot draw points at infinity (they all have
+``w = 0`` in clip space), and its view rays start at infinity behind the
+camera. With it the volumes are extruded to a finite distance beyond every
+receiver instead, so they are finite and closed, the view rays start outside
+all of them, and z-pass is right.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from itertools import combinations
+
+import numpy as np
+import pyvista as pv
+
+from pvshadows import _vtk as vtk
+
+#: The values ``zmode`` takes.
+ZMODES = ("auto", "zpass", "zfail")
+
+
+def near_region(renderer: vtk.vtkRenderer) -> np.ndarray | None:
+    """Return the camera position and the four corners of its near-plane rectangle.
+
+    Parameters
+    ----------
+    renderer : vtk.vtkRenderer
+        The renderer; its active camera and aspect ratio are read.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        ``(5, 3)`` float64 world points, or ``None`` for a parallel projection.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.pipeline.volume_zmode import near_region
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> near_region(pl.renderer).shape
+    (5, 3)
+    """
+    camera = renderer.GetActiveCamera()
+    if camera.GetParallelProjection():
+        return None
+    matrix = camera.GetCompositeProjectionTransformMatrix(renderer.GetTiledAspectRatio(), -1, 1)
+    inverse = np.linalg.inv(np.asarray(pv.array_from_vtkmatrix(matrix), dtype=np.float64))
+    ndc = np.array([[x, y, -1.0, 1.0] for x in (-1.0, 1.0) for y in (-1.0, 1.0)])
+    corners = ndc @ inverse.T
+    corners = corners[:, :3] / corners[:, 3:4]
+    return np.vstack([np.array(camera.GetPosition(), dtype=np.float64), corners])
+
+
+def hull_touches_box(points: np.ndarray, box: np.ndarray, margin: float = 1e-9) -> bool:
+    """Tell whether the convex hull of a few points meets an axis-aligned box.
+
+    Separating-axis test over the box's axes and every cross product of
+    point differences (a superset of the hull's face normals and edge
+    directions), so it is exact up to ``margin``, which leans towards
+    "touches".
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        ``(k, 3)`` points, ``k`` at most a dozen or so.
+    box : numpy.ndarray
+        ``(2, 3)`` min and max corners.
+    margin : float, default: 1e-9
+        Relative tolerance (of the sizes involved) counted as touching.
+
+    Returns
+    -------
+    bool
+        ``True`` when they may touch.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.pipeline.volume_zmode import hull_touches_box
+    >>> box = np.array([[0.0, 0, 0], [1, 1, 1]])
+    >>> hull_touches_box(np.array([[2.0, 0.5, 0.5], [3, 0.5, 0.5], [2, 2, 0.5]]), box)
+    False
+    >>> hull_touches_box(np.array([[2.0, 0.5, 0.5], [-1, 0.5, 0.5], [2, 2, 0.5]]), box)
+    True
+    """
+    points = np.asarray(points, dtype=np.float64)
+    box = np.asarray(box, dtype=np.float64)
+    slack = margin * max(float(np.abs(points).max()), float(np.abs(box).max()), 1e-300)
+    if np.any(points.min(axis=0) > box[1] + slack) or np.any(points.max(axis=0) < box[0] - slack):
+        return False  # the boxes around them do not even meet
+    centre = 0.5 * (box[0] + box[1])
+    points = points - centre
+    half = 0.5 * (box[1] - box[0])
+    differences = [b - a for a, b in combinations(points, 2)]
+    axis_list = list(np.eye(3))
+    axis_list += [np.cross(u, v) for u, v in combinations(differences, 2)]
+    axis_list += [np.cross(u, e) for u in differences for e in np.eye(3)]
+    axes = np.array(axis_list)
+    lengths = np.linalg.norm(axes, axis=1)
+    scale = max(float(np.abs(points).max()), float(half.max()), 1e-300)
+    keep = lengths > 1e-12 * scale * scale
+    axes = axes[keep] / lengths[keep, None]
+    projected = points @ axes.T
+    reach = np.abs(axes) @ half
+    slack = margin * scale
+    separated = (projected.min(axis=0) > reach + slack) | (projected.max(axis=0) < -reach - slack)
+    return not bool(separated.any())
+
+
+def light_region(light: np.ndarray, region: np.ndarray, box: np.ndarray) -> np.ndarray:
+    """Return points whose hull holds every segment from the light to the region.
+
+    Parameters
+    ----------
+    light : numpy.ndarray
+        ``(x, y, z, 1)`` point light or ``(dx, dy, dz, 0)`` direction
+        *towards* a directional light.
+    region : numpy.ndarray
+        ``(k, 3)`` points (the camera's near region).
+    box : numpy.ndarray
+        ``(2, 3)`` the box the hull is tested against (a directional light's
+        sweep is cut beyond it).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(k + 1, 3)`` or ``(2 k, 3)`` points.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.pipeline.volume_zmode import light_region
+    >>> region = np.zeros((5, 3))
+    >>> light_region(np.array([0, 0, 5, 1.0]), region, np.zeros((2, 3))).shape
+    (6, 3)
+    """
+    light = np.asarray(light, dtype=np.float64)
+    if light[3] != 0.0:
+        return np.vstack([light[:3] / light[3], region])
+    towards = light[:3] / np.linalg.norm(light[:3])
+    span = float(np.linalg.norm(np.ptp(np.vstack([box, region]), axis=0)))
+    return np.vstack([region, region + 2.0 * span * towards])
+
+
+def choose_zmode(
+    zmode: str,
+    light: np.ndarray,
+    renderer: vtk.vtkRenderer,
+    casters: Sequence[tuple[str, np.ndarray]],
+) -> tuple[str, str]:
+    """Decide between z-pass and z-fail for one light in one frame.
+
+    Parameters
+    ----------
+    zmode : {"auto", "zpass", "zfail"}
+        The setting: ``"auto"`` decides, the others force.
+    light : numpy.ndarray
+        ``(x, y, z, 1)`` point or spot light, or ``(dx, dy, dz, 0)`` the
+        direction towards a directional light, in world coordinates.
+    renderer : vtk.vtkRenderer
+        The renderer (its camera).
+    casters : sequence of (str, numpy.ndarray)
+        Each volume caster's name and world bounds ``(2, 3)``.
+
+    Returns
+    -------
+    tuple of str
+        ``"zpass"`` or ``"zfail"``, and why in words.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pyvista as pv
+    >>> from pvshadows.pipeline.volume_zmode import choose_zmode
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> pl.camera_position = [(0, -10, 1), (0, 0, 0), (0, 0, 1)]
+    >>> box = np.array([[-1.0, -1, 0], [1, 1, 2]])
+    >>> choose_zmode("auto", np.array([0, 0, 5, 1.0]), pl.renderer, [("box", box)])[0]
+    'zpass'
+    >>> pl.camera_position = [(0, 0, -3), (0, 0, -4), (0, 1, 0)]  # under the box
+    >>> choose_zmode("auto", np.array([0, 0, 5, 1.0]), pl.renderer, [("box", box)])[0]
+    'zfail'
+    """
+    if zmode in ("zpass", "zfail"):
+        return zmode, f"{zmode} forced by zmode={zmode!r}"
+    region = near_region(renderer)
+    if region is None:
+        return "zpass", (
+            "parallel projection: the volumes end beyond the scene instead of at infinity, "
+            "and the view rays start outside every one of them"
+        )
+    for name, box in casters:
+        if hull_touches_box(light_region(light, region, box), box):
+            return "zfail", (
+                f"the camera may be inside the shadow volume of {name} (the region between "
+                "the light and the camera's near plane meets its bounds)"
+            )
+    return "zpass", "the camera is outside every shadow volume"

@@ -1,0 +1,207 @@
+"""Conservative tests of boxes against what a camera sees and what a light reaches."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pvshadows import _vtk as vtk
+from pvshadows.scene.lights import LightPose
+
+
+def frustum_planes(camera: vtk.vtkCamera, aspect: float) -> np.ndarray:
+    """Return the six planes of a camera's view frustum in world coordinates.
+
+    Parameters
+    ----------
+    camera : vtk.vtkCamera
+        The camera.
+    aspect : float
+        The renderer's width over height.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(6, 4)`` planes ``(a, b, c, d)``; a point is inside when every
+        ``a x + b y + c z + d >= 0``.
+
+    Examples
+    --------
+    >>> import vtk
+    >>> from pvshadows.scene.culling import frustum_planes
+    >>> frustum_planes(vtk.vtkCamera(), 1.0).shape
+    (6, 4)
+    """
+    matrix = camera.GetCompositeProjectionTransformMatrix(aspect, -1, 1)
+    return clip_planes(np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)]))
+
+
+def clip_planes(m: np.ndarray) -> np.ndarray:
+    """Return the six frustum planes of a world-to-clip matrix (depth in [-1, 1]).
+
+    Parameters
+    ----------
+    m : numpy.ndarray
+        ``(4, 4)`` world-to-clip matrix.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(6, 4)`` unit-normal planes, as :func:`frustum_planes` returns them.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.culling import clip_planes
+    >>> clip_planes(np.eye(4))[0].tolist()
+    [1.0, 0.0, 0.0, 1.0]
+    """
+    planes = np.array(
+        [m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[3] + m[2], m[3] - m[2]]
+    )
+    return planes / np.linalg.norm(planes[:, :3], axis=1, keepdims=True)
+
+
+def box_in_frustum(box: np.ndarray, planes: np.ndarray) -> bool:
+    """Return whether a world box may be seen (conservative: never misses one that is).
+
+    Parameters
+    ----------
+    box : numpy.ndarray
+        ``(2, 3)`` min/max corners.
+    planes : numpy.ndarray
+        ``(6, 4)`` frustum planes from :func:`frustum_planes`.
+
+    Returns
+    -------
+    bool
+        ``False`` only when the box is wholly outside one plane.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import vtk
+    >>> from pvshadows.scene.culling import box_in_frustum, frustum_planes
+    >>> camera = vtk.vtkCamera()  # at (0, 0, 1) looking down -z
+    >>> planes = frustum_planes(camera, 1.0)
+    >>> box_in_frustum(np.array([[-0.1, -0.1, -1.0], [0.1, 0.1, -0.5]]), planes)
+    True
+    >>> box_in_frustum(np.array([[-0.1, -0.1, 2.0], [0.1, 0.1, 3.0]]), planes)
+    False
+    """
+    return bool(boxes_in_frustum(np.asarray(box)[None], planes)[0])
+
+
+def boxes_in_frustum(boxes: np.ndarray, planes: np.ndarray) -> np.ndarray:
+    """Test many world boxes against a frustum at once, like :func:`box_in_frustum`.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` min/max corners.
+    planes : numpy.ndarray
+        ``(6, 4)`` frustum planes from :func:`frustum_planes`.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n,)`` bool, ``False`` only for boxes wholly outside one plane.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import vtk
+    >>> from pvshadows.scene.culling import boxes_in_frustum, frustum_planes
+    >>> boxes = np.array([[[-0.1, -0.1, -1.0], [0.1, 0.1, -0.5]], [[0, 0, 2], [1, 1, 3]]])
+    >>> boxes_in_frustum(boxes, frustum_planes(vtk.vtkCamera(), 1.0)).tolist()
+    [True, False]
+    """
+    boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
+    farthest = np.where(planes[None, :, :3] >= 0.0, boxes[:, 1:2, :], boxes[:, 0:1, :])
+    distance = np.sum(planes[None, :, :3] * farthest, axis=2) + planes[None, :, 3]
+    return np.all(distance >= 0.0, axis=1)
+
+
+def box_in_spot(box: np.ndarray, pose: LightPose) -> bool:
+    """Return whether a world box may touch a spot light's cone (conservative).
+
+    Parameters
+    ----------
+    box : numpy.ndarray
+        ``(2, 3)`` world bounds.
+    pose : LightPose
+        The spot light.
+
+    Returns
+    -------
+    bool
+        ``False`` only when the box is certainly outside the cone.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.culling import box_in_spot
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 10.0)
+    >>> box_in_spot(np.array([[-0.1, -0.1, -2], [0.1, 0.1, -1]]), pose)
+    True
+    >>> box_in_spot(np.array([[3, 3, -2], [4, 4, -1]]), pose)
+    False
+    """
+    return bool(boxes_in_spot(np.asarray(box)[None], pose)[0])
+
+
+#: Which of the min (0) or max (1) corner each coordinate of a box's eight corners takes.
+_CORNERS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=bool)
+
+
+def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:
+    """Test many world boxes against a spot light's cone at once, like :func:`box_in_spot`.
+
+    A box passes when it holds the light, or when it is inside the apex
+    plane and the four sides of the pyramid around the cone and the sphere
+    around it reaches the cone's surface.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` world bounds.
+    pose : LightPose
+        The spot light.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n,)`` bool, ``False`` only for boxes certainly outside the cone.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.culling import boxes_in_spot
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 10.0)
+    >>> boxes = np.array([[[-0.1, -0.1, -2], [0.1, 0.1, -1]], [[3, 3, -2], [4, 4, -1]]])
+    >>> boxes_in_spot(boxes, pose).tolist()
+    [True, False]
+    """
+    boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
+    lo, hi = boxes[:, 0] - pose.position, boxes[:, 1] - pose.position
+    holds_light = np.all(lo <= 0.0, axis=1) & np.all(hi >= 0.0, axis=1)
+    corners = np.where(_CORNERS[None], hi[:, None, :], lo[:, None, :])
+    forward = pose.direction
+    right = np.cross(forward, [0.0, 0.0, 1.0] if abs(forward[2]) < 0.9 else [1.0, 0.0, 0.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    spread = np.tan(np.radians(min(pose.cone_angle, 89.9)))
+    # The apex plane and the four sides of the pyramid around the cone.
+    planes = np.array(
+        [forward] + [spread * forward + sign * axis for axis in (right, up) for sign in (-1, 1)]
+    )
+    behind_a_plane = np.any(np.all(corners @ planes.T < 0.0, axis=1), axis=1)
+    center = 0.5 * (lo + hi)
+    radius = 0.5 * np.linalg.norm(hi - lo, axis=1)
+    along = center @ pose.direction
+    across = np.linalg.norm(center - along[:, None] * pose.direction, axis=1)
+    angle = np.radians(min(pose.cone_angle, 89.9))
+    # Distance from the centre of the sphere around the box to the cone's surface.
+    outside = across * np.cos(angle) - along * np.sin(angle)
+    return holds_light | (~behind_a_plane & (outside <= radius))

@@ -1,0 +1,377 @@
+"""Where a 2D shadow map looks: the spot's cone, or the sun's box fitted to what matters.
+
+A spot light's map is a perspective view along its axis that just holds its
+cone. A directional light's map is an orthographic view fitted to the casters
+that can shadow a receiver the camera sees, snapped to its own texel grid and
+to discrete sizes, so that a camera moving alone never moves shadow edges.
+All of it is computed in double precision.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pvshadows import _vtk as vtk
+from pvshadows.geometry.transforms import look_rotation, perspective, translation
+from pvshadows.scene.lights import LightPose
+from pvshadows.scene.snapshot import ActorState
+
+#: Sizes of the sun's map are rounded up to steps of 2 ** (1 / SIZE_STEPS_PER_OCTAVE).
+SIZE_STEPS_PER_OCTAVE = 8
+#: Texels of margin kept on each side of the fitted region.
+MARGIN_TEXELS = 2
+
+
+@dataclass(frozen=True)
+class SpotFit:
+    """A spot light's perspective map.
+
+    Attributes
+    ----------
+    rotation : numpy.ndarray
+        ``(4, 4)`` rotation from world axes to the map's camera axes.
+    light_to_clip : numpy.ndarray
+        ``(4, 4)`` from light space (world axes centred on the light) to clip space.
+    texel : float
+        Size of a texel at the centre of the map, per unit of distance.
+    """
+
+    rotation: np.ndarray
+    light_to_clip: np.ndarray
+    texel: float
+
+
+def _up_for(direction: np.ndarray) -> np.ndarray:
+    return np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < 0.99 else np.array([0.0, 1.0, 0.0])
+
+
+def spot_fit(
+    pose: LightPose,
+    resolution: int,
+    near: float,
+    far: float,
+    boxes: np.ndarray | None = None,
+) -> SpotFit:
+    """Return the perspective map holding a spot light's cone, or the casters in it.
+
+    Parameters
+    ----------
+    pose : LightPose
+        The spot light.
+    resolution : int
+        Texels per side.
+    near, far : float
+        Clip distances (depth clamp makes them matter only for precision).
+    boxes : numpy.ndarray, optional
+        ``(n, 2, 3)`` world bounds of the casters that can shadow a receiver:
+        when they all lie in front of the light, the map holds only them
+        (its texels are then finer than the cone's), else the whole cone.
+
+    Returns
+    -------
+    SpotFit
+        Rotation, projection and texel size.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.fitting import spot_fit
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 45.0)
+    >>> fit = spot_fit(pose, 1000, 0.1, 10.0)
+    >>> round(fit.texel, 4)
+    0.002
+    """
+    rotation = look_rotation(pose.direction, _up_for(pose.direction))
+    half = _spot_half_width(pose, rotation, boxes) * (1.0 + 2.0 * MARGIN_TEXELS / resolution)
+    fov = 2.0 * np.degrees(np.arctan(half))
+    projection = perspective(fov, 1.0, near, far) @ rotation
+    return SpotFit(rotation, projection, float(2.0 * half / resolution))
+
+
+def _box_corners(boxes: np.ndarray) -> np.ndarray:
+    return np.stack(
+        [boxes[:, [i, j, k], [0, 1, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)], axis=1
+    ).reshape(-1, 3)
+
+
+def _spot_half_width(pose: LightPose, rotation: np.ndarray, boxes: np.ndarray | None) -> float:
+    """Tangent of the half angle the map must hold: the cone's, or less for casters in front."""
+    cone = float(np.tan(np.radians(min(pose.cone_angle, 89.0))))
+    if boxes is None or len(boxes) == 0:
+        return cone
+    local = (_box_corners(np.asarray(boxes, dtype=np.float64)) - pose.position) @ rotation[:3, :3].T
+    depth = -local[:, 2]
+    if not np.all(depth > 0.0):
+        return cone
+    return min(cone, float(np.max(np.abs(local[:, :2]) / depth[:, None])))
+
+
+def spot_shadowing_casters(
+    pose: LightPose, casters: list[ActorState], receivers: list[ActorState]
+) -> list[ActorState]:
+    """Return the casters that can shadow a receiver of a point or spot light.
+
+    A flat caster (a ground) with every other receiver on the light's side of
+    it shadows nothing, as for a directional light.
+
+    Parameters
+    ----------
+    pose : LightPose
+        The light.
+    casters, receivers : list of ActorState
+        The light's casters and the renderer's receivers.
+
+    Returns
+    -------
+    list of ActorState
+        The casters that matter for the fit of the light's map.
+    """
+    kept = []
+    for state in casters:
+        others = np.array([r.bounds for r in receivers if r is not state]).reshape(-1, 2, 3)
+        away = state.bounds.mean(axis=0) - pose.position
+        if not _flat_and_lit_above(state, away, others):
+            kept.append(state)
+    return kept
+
+
+@dataclass(frozen=True)
+class SunFit:
+    """A directional light's orthographic map.
+
+    Attributes
+    ----------
+    rotation : numpy.ndarray
+        ``(4, 4)`` rotation from world axes to light axes (z along the light).
+    origin : numpy.ndarray
+        World point at the centre of the map's near plane.
+    half_width : float
+        Half the map's width (and height) in world units.
+    depth : float
+        Depth range covered, from the near plane.
+    resolution : int
+        Texels per side.
+    """
+
+    rotation: np.ndarray
+    origin: np.ndarray
+    half_width: float
+    depth: float
+    resolution: int
+
+    @property
+    def texel(self) -> float:
+        """World size of one texel."""
+        return 2.0 * self.half_width / self.resolution
+
+    def world_to_light(self) -> np.ndarray:
+        """Return the ``(4, 4)`` matrix from world to light space."""
+        return self.rotation @ translation(-self.origin)
+
+    def key(self) -> tuple:
+        """Return a value that changes whenever the map's coverage changes."""
+        return (self.rotation.tobytes(), self.origin.tobytes(), self.half_width, self.depth)
+
+    def _near_center(self) -> np.ndarray:
+        return self.rotation[:3, :3] @ self.origin
+
+    def covers(self, needed: SunFit) -> bool:
+        """Return whether this map can stand in for ``needed`` without drawing it again.
+
+        It can when both look along the same light, this map's coverage holds
+        the needed one in all three directions, and its texels are at most
+        twice as large: the camera can move and the map stays (no re-render,
+        no shimmering) until the view needs much finer or other coverage.
+
+        Parameters
+        ----------
+        needed : SunFit
+            The fit this frame asks for.
+
+        Returns
+        -------
+        bool
+            Whether to keep this map.
+        """
+        if self.resolution != needed.resolution or not np.array_equal(
+            self.rotation, needed.rotation
+        ):
+            return False
+        mine, theirs = self._near_center(), needed._near_center()
+        across = np.all(np.abs(theirs[:2] - mine[:2]) + needed.half_width <= self.half_width)
+        along = mine[2] <= theirs[2] and theirs[2] + needed.depth <= mine[2] + self.depth
+        return bool(across and along and self.half_width <= 2.0 * needed.half_width)
+
+    def casters_in(self, actors: list[ActorState]) -> list[ActorState]:
+        """Return the casters whose bounds overlap this map's coverage across the light.
+
+        Parameters
+        ----------
+        actors : list of ActorState
+            The renderer's actors.
+
+        Returns
+        -------
+        list of ActorState
+            The casters to draw into the map.
+        """
+        casters = [a for a in actors if a.caster]
+        if not casters:
+            return []
+        boxes = _light_boxes(self.rotation, np.array([a.bounds for a in casters]))
+        center = self._near_center()[:2]
+        inside = np.all(boxes[:, 1, :2] >= center - self.half_width, axis=1) & np.all(
+            boxes[:, 0, :2] <= center + self.half_width, axis=1
+        )
+        return [caster for caster, keep in zip(casters, inside, strict=True) if keep]
+
+
+def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+    corners = np.stack(
+        [boxes[:, [i, j, k], [0, 1, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)], axis=1
+    )
+    rotated = corners @ rotation[:3, :3].T
+    return np.stack([rotated.min(axis=1), rotated.max(axis=1)], axis=1)
+
+
+def _view_corners(camera: vtk.vtkCamera, aspect: float) -> np.ndarray:
+    matrix = camera.GetCompositeProjectionTransformMatrix(aspect, -1, 1)
+    inverse = np.linalg.inv(
+        np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
+    )
+    ndc = np.array([[x, y, z, 1.0] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+    world = ndc @ inverse.T
+    return world[:, :3] / world[:, 3:4]
+
+
+def _flat_and_lit_above(state: ActorState, direction: np.ndarray, others: np.ndarray) -> bool:
+    """Whether a caster is a flat sheet with every other receiver on its lit side."""
+    points = state.triangles.points
+    if points.shape[0] < 3:
+        return True
+    tri = state.triangles.triangles[0]
+    normal = np.cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]])
+    size = float(np.ptp(points, axis=0).max())
+    if not np.linalg.norm(normal) > 0.0 or size == 0.0:
+        return False
+    normal /= np.linalg.norm(normal)
+    if np.abs((points - points[tri[0]]) @ normal).max() > 1e-6 * size:
+        return False
+    world_normal = np.linalg.inv(state.matrix[:3, :3]).T @ normal
+    world_normal /= np.linalg.norm(world_normal)
+    if world_normal @ direction > 0.0:
+        world_normal = -world_normal
+    anchor = (state.matrix @ np.append(points[tri[0]] + state.triangles.center, 1.0))[:3]
+    if others.size == 0:
+        return True
+    corners = np.stack(
+        [others[:, [i, j, k], [0, 1, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)], axis=1
+    )
+    return bool(np.all((corners - anchor) @ world_normal >= -1e-6 * size))
+
+
+def sun_rotation(pose: LightPose) -> np.ndarray:
+    """Return the rotation from world axes to a directional light's axes (z along the light).
+
+    Parameters
+    ----------
+    pose : LightPose
+        The directional light.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(4, 4)`` right-handed rotation whose third row is the light's direction.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.fitting import sun_rotation
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> pose = LightPose(LightKind.DIRECTIONAL, np.zeros(3), np.array([0, 0, -1.0]), 90.0)
+    >>> sun_rotation(pose)[2, :3].tolist()
+    [0.0, 0.0, -1.0]
+    """
+    rotation = look_rotation(pose.direction, _up_for(pose.direction))
+    rotation[2] *= -1.0
+    rotation[0] *= -1.0
+    return rotation
+
+
+def sun_fit(
+    pose: LightPose,
+    actors: list[ActorState],
+    camera: vtk.vtkCamera,
+    aspect: float,
+    resolution: int,
+) -> SunFit | None:
+    """Fit a directional light's map to the casters that can shadow a visible receiver.
+
+    The region across the light is what the camera sees of the receivers,
+    cut down to the casters over it; a flat caster (a ground) with every
+    other receiver on its lit side shadows nothing and does not widen it.
+    The region's size is rounded up to one of ``SIZE_STEPS_PER_OCTAVE`` sizes
+    per octave and its centre snapped to the map's texels, so shadow edges
+    stay put while only the camera moves.
+
+    Parameters
+    ----------
+    pose : LightPose
+        The directional light.
+    actors : list of ActorState
+        The renderer's actors this frame.
+    camera : vtk.vtkCamera
+        The camera.
+    aspect : float
+        The renderer's aspect ratio.
+    resolution : int
+        Texels per side.
+
+    Returns
+    -------
+    SunFit or None
+        ``None`` when no caster can shadow a visible receiver.
+    """
+    rotation = sun_rotation(pose)
+    casters = [a for a in actors if a.caster]
+    receivers = [a for a in actors if a.receiver]
+    if not casters or not receivers:
+        return None
+    receiver_boxes = np.array([a.bounds for a in receivers])
+    view = _view_corners(camera, aspect) @ rotation[:3, :3].T
+    view_lo, view_hi = view.min(axis=0), view.max(axis=0)
+    seen = _light_boxes(rotation, receiver_boxes)
+    lo = np.maximum(seen[:, 0, :2], view_lo[:2])
+    hi = np.minimum(seen[:, 1, :2], view_hi[:2])
+    visible = np.all(lo <= hi, axis=1)
+    if not visible.any():
+        return None
+    region_lo, region_hi = lo[visible].min(axis=0), hi[visible].max(axis=0)
+    caster_boxes = _light_boxes(rotation, np.array([a.bounds for a in casters]))
+    relevant = []
+    for state, box in zip(casters, caster_boxes, strict=True):
+        if np.any(box[1, :2] < region_lo) or np.any(box[0, :2] > region_hi):
+            continue
+        others = np.array([r.bounds for r in receivers if r is not state])
+        if _flat_and_lit_above(state, pose.direction, others):
+            continue
+        relevant.append(box)
+    if not relevant:
+        return None
+    boxes = np.array(relevant)
+    fit_lo = np.maximum(boxes[:, 0, :2].min(axis=0), region_lo)
+    fit_hi = np.minimum(boxes[:, 1, :2].max(axis=0), region_hi)
+    size = float(max(np.max(fit_hi - fit_lo), 1e-30))
+    size = 2.0 ** (np.ceil(np.log2(size) * SIZE_STEPS_PER_OCTAVE) / SIZE_STEPS_PER_OCTAVE)
+    texel = size / (resolution - 2 * MARGIN_TEXELS)
+    center = np.round(0.5 * (fit_lo + fit_hi) / texel) * texel
+    near = float(boxes[:, 0, 2].min())
+    far = float(max(boxes[:, 1, 2].max(), seen[visible, 1, 2].max()))
+    step = 2.0 ** np.ceil(np.log2(max(far - near, 1e-30))) / 16.0
+    near = np.floor(near / step) * step - step
+    far = np.ceil(far / step) * step + step
+    origin = rotation[:3, :3].T @ np.array([center[0], center[1], near])
+    return SunFit(rotation, origin, texel * resolution / 2.0, far - near, resolution)

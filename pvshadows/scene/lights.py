@@ -1,0 +1,165 @@
+"""What a shadow technique needs to know about a :class:`pyvista.Light`.
+
+PyVista's own light is the light; this module only reads it. A light is a
+point light when it is positional with ``cone_angle >= 90``, a spot light when
+it is positional with a narrower cone, and a directional light otherwise.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import StrEnum
+
+import numpy as np
+
+from pvshadows import _vtk as vtk
+
+
+class LightKind(StrEnum):
+    """The three kinds of light that cast shadows."""
+
+    POINT = "point"
+    SPOT = "spot"
+    DIRECTIONAL = "directional"
+
+
+def light_kind(light: vtk.vtkLight) -> LightKind:
+    """Classify a VTK/PyVista light.
+
+    Parameters
+    ----------
+    light : vtk.vtkLight
+        The light, usually a :class:`pyvista.Light`.
+
+    Returns
+    -------
+    LightKind
+        ``POINT`` for positional lights with ``cone_angle >= 90``, ``SPOT``
+        for narrower positional lights, ``DIRECTIONAL`` otherwise.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.scene.lights import light_kind
+    >>> light_kind(pv.Light(positional=True, cone_angle=180)).value
+    'point'
+    >>> light_kind(pv.Light(positional=True, cone_angle=30)).value
+    'spot'
+    """
+    if not light.GetPositional():
+        return LightKind.DIRECTIONAL
+    return LightKind.POINT if light.GetConeAngle() >= 90.0 else LightKind.SPOT
+
+
+@dataclass(frozen=True)
+class LightPose:
+    """A light in world coordinates, as one frame sees it.
+
+    Attributes
+    ----------
+    kind : LightKind
+        Point, spot or directional.
+    position : numpy.ndarray
+        World position, float64 ``(3,)``. For a directional light, the point
+        its direction is measured from (only the direction matters).
+    direction : numpy.ndarray
+        Unit vector from the light towards its focal point, float64 ``(3,)``.
+    cone_angle : float
+        Half angle of a spot light's cone in degrees (90 or more otherwise).
+    """
+
+    kind: LightKind
+    position: np.ndarray
+    direction: np.ndarray
+    cone_angle: float
+
+    def key(self) -> tuple:
+        """Return a hashable value that changes whenever the pose changes."""
+        return (self.kind, *self.position.tolist(), *self.direction.tolist(), self.cone_angle)
+
+
+def light_pose(light: vtk.vtkLight) -> LightPose:
+    """Read a light's world pose.
+
+    Camera lights and headlights are read through their transform matrix,
+    which the renderer updates to follow the camera; call
+    ``renderer.UpdateLightsGeometryToFollowCamera()`` first when the camera
+    may have moved since the last render.
+
+    Parameters
+    ----------
+    light : vtk.vtkLight
+        The light.
+
+    Returns
+    -------
+    LightPose
+        Its kind, world position, unit direction and cone angle.
+
+    Raises
+    ------
+    ValueError
+        If the position or focal point is not finite, they coincide so that
+        the light has no direction, or a spot light's cone angle is not positive.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.scene.lights import light_pose
+    >>> pose = light_pose(pv.Light(position=(0, 0, 3), focal_point=(0, 0, 0)))
+    >>> pose.direction.tolist()
+    [0.0, 0.0, -1.0]
+    """
+    position = np.array(light.GetTransformedPosition(), dtype=np.float64)
+    focal_point = np.array(light.GetTransformedFocalPoint(), dtype=np.float64)
+    if not (np.isfinite(position).all() and np.isfinite(focal_point).all()):
+        msg = (
+            f"light position {tuple(light.GetPosition())} and focal_point "
+            f"{tuple(light.GetFocalPoint())} must be finite numbers"
+        )
+        raise ValueError(msg)
+    kind = light_kind(light)
+    if kind is LightKind.SPOT and not light.GetConeAngle() > 0.0:
+        msg = (
+            f"cone_angle={light.GetConeAngle()} is not allowed for a spot light: it must be "
+            "more than 0 degrees (90 or more makes it a point light)"
+        )
+        raise ValueError(msg)
+    offset = focal_point - position
+    length = float(np.linalg.norm(offset))
+    if length == 0.0 or not np.isfinite(length):
+        if kind is LightKind.POINT:
+            direction = np.array([0.0, 0.0, -1.0])
+        else:
+            msg = (
+                f"a {kind.value} light needs a direction: its position and focal_point "
+                f"are both {tuple(position)}"
+            )
+            raise ValueError(msg)
+    else:
+        direction = offset / length
+    return LightPose(kind, position, direction, float(light.GetConeAngle()))
+
+
+def casts_light(light: vtk.vtkLight) -> bool:
+    """Return whether the light is switched on and has a positive intensity.
+
+    Parameters
+    ----------
+    light : vtk.vtkLight
+        The light.
+
+    Returns
+    -------
+    bool
+        ``False`` for a light that is off or has zero intensity: such a
+        light casts nothing and costs nothing.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.scene.lights import casts_light
+    >>> casts_light(pv.Light(intensity=0.0))
+    False
+    """
+    return bool(light.GetSwitch()) and light.GetIntensity() > 0.0

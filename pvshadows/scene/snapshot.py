@@ -1,0 +1,312 @@
+"""What a renderer holds in one frame: casters, receivers and their geometry.
+
+Each frame reads three VTK modification times per actor (the actor's, which
+covers its property and transform, its mapper's and the mapper's input's)
+and its roles; an actor whose stamp did not change keeps last frame's state
+(matrix, bounds, name, triangles) untouched. The renderer's actor list is
+walked again only when its props changed. Triangles are re-read only when the
+actor's data changed. When no actor changed, the frame gets last frame's
+:class:`Snapshot` itself, so what is derived from it can be kept too.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from pvshadows import _vtk as vtk
+from pvshadows.geometry.transforms import translation
+from pvshadows.scene.triangles import (
+    ActorTriangles,
+    actor_matrix,
+    read_triangles,
+    vtk_id,
+    world_bounds,
+)
+
+
+@dataclass
+class ActorState:
+    """One actor in one frame.
+
+    Attributes
+    ----------
+    actor : vtk.vtkActor
+        The actor.
+    name : str
+        How messages name it.
+    triangles : ActorTriangles
+        Its surface.
+    matrix : numpy.ndarray
+        Model-to-world matrix (float64, 4x4).
+    bounds : numpy.ndarray
+        World bounds ``(2, 3)``.
+    caster, receiver : bool
+        Its roles this frame.
+    plane : bool
+        Named the receiving plane of planar shadows
+        (``pl.shadows.set_receiver(actor, plane=True)``).
+    """
+
+    actor: vtk.vtkActor
+    name: str
+    triangles: ActorTriangles
+    matrix: np.ndarray
+    bounds: np.ndarray
+    caster: bool
+    receiver: bool
+    plane: bool = False
+
+    def model_matrix(self) -> np.ndarray:
+        """Return the model-to-world matrix of :attr:`triangles`' centred points (float64)."""
+        return self.matrix @ translation(self.triangles.center)
+
+    def key(self) -> tuple:
+        """Return a value that changes when the actor's shadow-casting shape changes."""
+        return self._key
+
+    @cached_property
+    def _key(self) -> tuple:
+        return (vtk_id(self.actor), self.triangles.version, self.matrix.tobytes())
+
+
+@dataclass(eq=False)
+class Snapshot:
+    """The actors of a renderer in one frame.
+
+    Attributes
+    ----------
+    actors : list of ActorState
+        Visible actors with triangles.
+    bystanders : list of vtk.vtkActor
+        Visible actors that show no shadow (not receivers, unlit, or without
+        triangles); they still need the probe edit to report "no surface".
+    """
+
+    actors: list[ActorState]
+    bystanders: list[vtk.vtkActor]
+    #: Keys (:func:`pvshadows.scene.triangles.vtk_id`) of the actors read again for this frame.
+    changed: frozenset[str] = field(default_factory=frozenset)
+
+    @cached_property
+    def casters(self) -> list[ActorState]:
+        """Actors that cast shadows."""
+        return [a for a in self.actors if a.caster]
+
+    @cached_property
+    def receivers(self) -> list[ActorState]:
+        """Actors that show shadows."""
+        return [a for a in self.actors if a.receiver]
+
+    @cached_property
+    def caster_bounds(self) -> np.ndarray:
+        """World bounds of :attr:`casters`, ``(n, 2, 3)``."""
+        return _stacked(self.casters)
+
+    @cached_property
+    def receiver_bounds(self) -> np.ndarray:
+        """World bounds of :attr:`receivers`, ``(n, 2, 3)``."""
+        return _stacked(self.receivers)
+
+
+def _stacked(states: list[ActorState]) -> np.ndarray:
+    return np.array([s.bounds for s in states]).reshape(-1, 2, 3)
+
+
+class SceneReader:
+    """Reads a renderer's actors each frame, keeping what did not change.
+
+    Parameters
+    ----------
+    names : callable
+        Returns the display name of an actor (for messages).
+    """
+
+    def __init__(self, names) -> None:
+        self._names = names
+        self._cache: dict[str, tuple[vtk.vtkActor, tuple | None, ActorTriangles | None]] = {}
+        self._versions = 0
+        self._frames: dict[str, _RendererCache] = {}
+        self.casting: dict[str, bool] = {}
+        self.receiving: dict[str, bool] = {}
+        #: Actors named receiving planes of planar shadows.
+        self.planes: set[str] = set()
+        self.problems: dict[str, str] = {}
+        #: How many actors were read again (stamp changed) since the reader was made.
+        self.reread = 0
+
+    def name_of(self, actor: vtk.vtkActor) -> str:
+        """Return how messages name an actor, e.g. ``"actor 'ground'"``."""
+        return self._names(actor)
+
+    def triangles_of(self, actor: vtk.vtkActor) -> ActorTriangles | None:
+        """Return the actor's triangles, re-reading them only when its data changed.
+
+        Parameters
+        ----------
+        actor : vtk.vtkActor
+            The actor.
+
+        Returns
+        -------
+        ActorTriangles or None
+            ``None`` for an actor without triangles.
+
+        Raises
+        ------
+        ValueError
+            If the actor's points are not finite.
+        """
+        mapper = actor.GetMapper()
+        data = mapper.GetInputDataObject(0, 0) if mapper is not None else None
+        stamp = (vtk_id(data), int(data.GetMTime())) if data is not None else None
+        cached = self._cache.get(vtk_id(actor))
+        if cached is not None and cached[1] == stamp:
+            return cached[2]
+        triangles = read_triangles(actor, self._names(actor))
+        if triangles is not None:
+            self._versions += 1
+            triangles.version = self._versions
+        self._cache[vtk_id(actor)] = (actor, stamp, triangles)
+        return triangles
+
+    def read(self, renderer: vtk.vtkRenderer) -> Snapshot:
+        """Return the renderer's actors as this frame sees them.
+
+        An actor whose geometry cannot be used (non-finite points) is left out
+        of the shadows with a warning naming it, once, and the frame goes on.
+
+        Parameters
+        ----------
+        renderer : vtk.vtkRenderer
+            The renderer.
+
+        Returns
+        -------
+        Snapshot
+            Casters, receivers and bystanders; last frame's own object when
+            no actor changed.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> from pvshadows.scene.snapshot import SceneReader
+        >>> pl = pv.Plotter(off_screen=True)
+        >>> box = pl.add_mesh(pv.Cube())
+        >>> reader = SceneReader(lambda actor: "an actor")
+        >>> first = reader.read(pl.renderer)
+        >>> reader.read(pl.renderer) is first
+        True
+        >>> box.position = (1, 0, 0)
+        >>> sorted(reader.read(pl.renderer).changed) == [box.__this__]
+        True
+        """
+        cache = self._frames.setdefault(vtk_id(renderer), _RendererCache())
+        camera = renderer.GetActiveCamera().GetMTime()
+        props = renderer.GetViewProps().GetMTime()
+        if cache.props != props:
+            collection = renderer.GetActors()
+            collection.InitTraversal()
+            cache.actors = [collection.GetNextActor() for _ in range(collection.GetNumberOfItems())]
+            cache.props = props
+        entries: dict[int, _Entry] = {}
+        changed = []
+        for actor in cache.actors:
+            entry = cache.entries.get(id(actor))
+            if (
+                entry is None
+                or entry.actor is not actor
+                or entry.stamp != self._stamp(entry, camera)
+            ):
+                entry = self._entry(actor, camera)
+                changed.append(entry.key)
+            entries[id(actor)] = entry
+        if not changed and entries.keys() == cache.entries.keys() and cache.snapshot:
+            return cache.snapshot
+        self.reread += len(changed)
+        kept = {e.key for e in entries.values()}
+        for gone in cache.entries.values():
+            if gone.key not in kept:
+                self._cache.pop(gone.key, None)
+        actors = [e.state for e in entries.values() if e.state is not None]
+        bystanders = [e.actor for e in entries.values() if e.bystander]
+        cache.entries = entries
+        cache.snapshot = Snapshot(actors, bystanders, frozenset(changed))
+        return cache.snapshot
+
+    def _stamp(self, entry: _Entry, camera: int) -> tuple:
+        """Return the modification times and roles that decide whether an actor is read again."""
+        key = entry.key
+        return (
+            vtk.vtkActor.GetMTime(entry.actor),
+            0 if entry.mapper is None else vtk.vtkObject.GetMTime(entry.mapper),
+            0 if entry.data is None else vtk.vtkDataObject.GetMTime(entry.data),
+            # A follower turns to face the camera: its matrix changes with the camera's.
+            camera if entry.follower else 0,
+            self.casting.get(key, True),
+            self.receiving.get(key, True),
+            key in self.planes,
+        )
+
+    def _entry(self, actor: vtk.vtkActor, camera: int) -> _Entry:
+        entry = _Entry(actor, vtk_id(actor), isinstance(actor, vtk.vtkFollower))
+        entry.state, entry.bystander = self._state_of(actor, entry.key)
+        entry.mapper = actor.GetMapper()
+        entry.data = None if entry.mapper is None else entry.mapper.GetInputDataObject(0, 0)
+        entry.stamp = self._stamp(entry, camera)
+        return entry
+
+    def _state_of(self, actor: vtk.vtkActor, key: str) -> tuple[ActorState | None, bool]:
+        if not actor.GetVisibility() or actor.GetMapper() is None:
+            return None, False
+        try:
+            triangles = self.triangles_of(actor)
+        except ValueError as error:
+            if self.problems.get(key) != str(error):
+                warnings.warn(f"pvshadows leaves it out: {error}", stacklevel=4)
+            self.problems[key] = str(error)
+            return None, True
+        self.problems.pop(key, None)
+        if triangles is None:
+            return None, True
+        matrix = actor_matrix(actor)
+        caster = self.casting.get(key, True)
+        receiver = self.receiving.get(key, True) and bool(actor.GetProperty().GetLighting())
+        state = ActorState(
+            actor,
+            self._names(actor),
+            triangles,
+            matrix,
+            world_bounds(triangles, matrix),
+            caster,
+            receiver,
+            receiver and key in self.planes,
+        )
+        return state, not receiver
+
+
+@dataclass
+class _Entry:
+    """What one actor was at its last change, and the VTK objects whose times say it changed."""
+
+    actor: vtk.vtkActor
+    key: str
+    follower: bool
+    state: ActorState | None = None
+    bystander: bool = False
+    mapper: vtk.vtkMapper | None = None
+    data: vtk.vtkDataObject | None = None
+    stamp: tuple = ()
+
+
+@dataclass
+class _RendererCache:
+    """The actors one renderer showed in its last frame."""
+
+    props: int = -1
+    actors: list[vtk.vtkActor] = field(default_factory=list)
+    entries: dict[int, _Entry] = field(default_factory=dict)
+    snapshot: Snapshot | None = None

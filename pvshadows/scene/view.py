@@ -1,0 +1,118 @@
+"""What the camera shows in one frame: its matrices, viewport and frustum, built once.
+
+VTK can draw one frame in pieces (tiles of a large screenshot, a larger
+framebuffer for SSAA); a :class:`FrameView` describes the piece being drawn,
+so build one per render target from that target's renderer and camera.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pvshadows import _vtk as vtk
+from pvshadows.scene.culling import clip_planes
+
+
+def _array(matrix: vtk.vtkMatrix4x4) -> np.ndarray:
+    elements = np.zeros(16)
+    matrix.DeepCopy(elements, matrix)  # one call instead of sixteen GetElement
+    return elements.reshape(4, 4)
+
+
+@dataclass(frozen=True)
+class FrameView:
+    """The camera of one render target in one frame.
+
+    Attributes
+    ----------
+    world_to_view : numpy.ndarray
+        VTK's view matrix (``vertexVC`` in shaders), float64 ``(4, 4)``.
+    view_to_world : numpy.ndarray
+        Its inverse.
+    projection : numpy.ndarray
+        View to clip coordinates (depth in [-1, 1]).
+    world_to_clip : numpy.ndarray
+        ``projection @ world_to_view``.
+    aspect : float
+        The renderer's tiled aspect ratio.
+    viewport : tuple of int
+        Width and height of the renderer in pixels.
+    planes : numpy.ndarray
+        ``(6, 4)`` world frustum planes (see :func:`pvshadows.scene.culling.frustum_planes`).
+    """
+
+    world_to_view: np.ndarray
+    view_to_world: np.ndarray
+    projection: np.ndarray
+    world_to_clip: np.ndarray
+    aspect: float
+    viewport: tuple[int, int]
+    planes: np.ndarray
+
+    @classmethod
+    def of(cls, renderer: vtk.vtkRenderer) -> FrameView:
+        """Build the view of a renderer's active camera as it is now.
+
+        Parameters
+        ----------
+        renderer : vtk.vtkRenderer
+            The renderer (or tile) being drawn.
+
+        Returns
+        -------
+        FrameView
+            Its matrices, viewport and frustum planes.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> from pvshadows.scene.view import FrameView
+        >>> pl = pv.Plotter(off_screen=True, window_size=(400, 300))
+        >>> view = FrameView.of(pl.renderer)
+        >>> view.planes.shape, round(view.aspect, 3)
+        ((6, 4), 1.333)
+        """
+        camera = renderer.GetActiveCamera()
+        aspect = float(renderer.GetTiledAspectRatio())
+        world_to_view = _array(camera.GetModelViewTransformMatrix())
+        projection = _array(camera.GetProjectionTransformMatrix(aspect, -1, 1))
+        width, height = renderer.GetSize()
+        return cls(
+            world_to_view,
+            np.linalg.inv(world_to_view),
+            projection,
+            projection @ world_to_view,
+            aspect,
+            (int(width), int(height)),
+            clip_planes(projection @ world_to_view),
+        )
+
+    def light_in_view(self, light: np.ndarray) -> np.ndarray:
+        """Return a homogeneous world light vector in view coordinates.
+
+        Parameters
+        ----------
+        light : numpy.ndarray
+            ``(x, y, z, 1)`` for a positional light, ``(d, 0)`` with ``d``
+            pointing towards a directional light.
+
+        Returns
+        -------
+        numpy.ndarray
+            The same in view coordinates; a direction comes back of unit length.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import pyvista as pv
+        >>> from pvshadows.scene.view import FrameView
+        >>> view = FrameView.of(pv.Plotter(off_screen=True).renderer)
+        >>> float(np.linalg.norm(view.light_in_view(np.array([0, 0, 5.0, 0])[:4])[:3]))
+        1.0
+        """
+        in_view = self.world_to_view @ np.asarray(light, dtype=np.float64)
+        if light[3] == 0.0:
+            in_view[:3] /= np.linalg.norm(in_view[:3])
+        return in_view

@@ -1,0 +1,1 @@
+"""Receivers' shader edits: assembling them, applying them to VTK's shaders, checking them."""

@@ -1,0 +1,325 @@
+"""The shader edits and uniforms of every actor of one renderer, kept up to date cheaply.
+
+Each frame the receivers need the edits of the lights that shadow them and
+the uniforms those lights' techniques return (packed into the arrays of each
+group of lights, :func:`pvshadows.shaders.shading.receiver_uniforms`); bystanders
+need only the probe switch. Both are sent to VTK only where they changed:
+replacements and packed uniforms are worked out once per distinct set of
+lights an actor shows (its *signature*), not once per actor; replacements are
+rebuilt for an actor only when its state, its signature or the lights'
+shadings changed; and a uniform whose value did not change is not set again.
+So a frame where only the camera moved sets the camera-dependent uniforms and
+nothing else, and a frame where nothing changed makes no VTK call here at all.
+
+A receiver whose shader variant refused the edits, or in whose compiled
+program some edits did not land, tells this object through its
+:class:`~pvshadows.shaders.landing.LandingCheck` (no per-frame watch over every
+receiver): the next frame applies its edits again (a refused variant is then
+left as VTK built it) and :meth:`ReceiverEdits.problems` names it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pvshadows import _vtk as vtk
+from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.shaders.shading import (
+    PROBE_UNIFORM,
+    LightShading,
+    ShaderEdits,
+    bystander_replacements,
+    receiver_replacements,
+    receiver_uniforms,
+    uniform_setter,
+)
+
+#: The state kept for a bystander that receives as points or lines (no triangles).
+_LIT_POINTS = "lit points"
+
+
+def _same(a: object, b: object) -> bool:
+    if a is b:
+        return True
+    if isinstance(a, np.ndarray) and isinstance(b, np.ndarray):
+        return a.shape == b.shape and bool((a == b).all())
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray) or type(a) is not type(b):
+        return False
+    return bool(a == b)
+
+
+def _signature(pbr: bool, lights: list[LightShading]) -> tuple:
+    return (
+        pbr,
+        tuple(
+            (
+                light.vtk_index,
+                light.visibility,
+                tuple(sorted(light.samplers.items())),
+                light.needs,
+                light.sources,
+                light.defines,
+            )
+            for light in lights
+        ),
+    )
+
+
+class ReceiverEdits:
+    """Owns the :class:`~pvshadows.shaders.shading.ShaderEdits` of one renderer's actors.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.shaders.edits import ReceiverEdits
+    >>> from pvshadows.shaders.shading import PROBE_UNIFORM, LightShading
+    >>> from pvshadows.scene.snapshot import SceneReader
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> _ = pl.add_mesh(pv.Sphere())
+    >>> snapshot = SceneReader(lambda actor: "an actor").read(pl.renderer)
+    >>> edits = ReceiverEdits()
+    >>> edits.update(snapshot, [LightShading(0, "1.0")], {PROBE_UNIFORM: -1, "pvsLevel": 0.5})
+    >>> edits.update(snapshot, [LightShading(0, "1.0")], {PROBE_UNIFORM: -1, "pvsLevel": 0.5})
+    >>> edits.uniform_calls
+    2
+    """
+
+    def __init__(self) -> None:
+        self._edits: dict[str, ShaderEdits] = {}
+        self._uniforms: dict[str, vtk.vtkUniforms] = {}
+        self._states: dict[str, ActorState | str | None] = {}
+        self._signature_of: dict[str, tuple] = {}
+        self._lights_of: dict[tuple, list[LightShading]] = {}
+        self._replacements: dict[tuple, list[tuple[str, str]]] = {}
+        self._sent: dict[tuple, dict[str, object]] = {}
+        self._members: dict[tuple, list[vtk.vtkUniforms]] = {}
+        self._bystander = bystander_replacements()
+        self._snapshot: Snapshot | None = None
+        self._shadings: list[LightShading] = []
+        self._lit_points: set[str] = set()
+        self._probe: object = None
+        self._standing: list[vtk.vtkUniforms] = []
+        self._flagged: set[str] = set()
+        self._problems: dict[str, str] = {}
+        #: Uniform values handed to VTK since this object was made (one per actor and uniform).
+        self.uniform_calls = 0
+        #: Times an actor's replacements were worked out again.
+        self.edited = 0
+
+    def update(
+        self,
+        snapshot: Snapshot,
+        shadings: list[LightShading],
+        uniforms: dict[str, object],
+        light_space: list[LightShading] | None = None,
+        lit_points: set[str] | None = None,
+    ) -> None:
+        """Bring every actor's edits and uniforms to this frame's.
+
+        Parameters
+        ----------
+        snapshot : Snapshot
+            This frame's actors.
+        shadings : list of LightShading
+            How receivers read each shadowed light.
+        uniforms : dict
+            Every light's uniform values by name (including the probe switch,
+            which bystanders get too).
+        light_space : list of LightShading, optional
+            The shadings of lights whose lookups work at any fragment
+            (shadow maps): points and lines without triangles read these.
+        lit_points : set of str, optional
+            Keys of the bystanders VTK lights without triangles (points as
+            spheres, lines as tubes): they receive ``light_space``.
+        """
+        light_space = light_space or []
+        lit_points = lit_points or set()
+        flagged, self._flagged = self._flagged, set()
+        same = (
+            snapshot is self._snapshot
+            and shadings == self._shadings
+            and lit_points == self._lit_points
+            and not flagged
+        )
+        if same:
+            self._send_changed(uniforms)
+            return
+        fresh: dict[tuple, dict[str, object]] = {}
+        touched = set()
+        members: dict[tuple, list[vtk.vtkUniforms]] = {}
+        standing = []
+        for state in snapshot.receivers:
+            key = state.key()[0]
+            lights = [s.for_actor(key) for s in shadings]
+            self._receive(state.actor, key, state, lights, True, flagged, uniforms, fresh)
+            members.setdefault(self._signature_of[key], []).append(self._uniforms[key])
+            touched.add(key)
+        for actor in snapshot.bystanders:
+            key = actor.__this__
+            touched.add(key)
+            if key in lit_points:
+                lights = [s.for_actor(key) for s in light_space]
+                self._receive(actor, key, _LIT_POINTS, lights, False, flagged, uniforms, fresh)
+                members.setdefault(self._signature_of[key], []).append(self._uniforms[key])
+                continue
+            if not (key in self._states and self._states[key] is None) or key in flagged:
+                self._edits_of(actor, key).apply(self._bystander)
+                self._edits_of(actor, key).set_uniforms({PROBE_UNIFORM: uniforms[PROBE_UNIFORM]})
+                self._uniforms[key] = actor.GetShaderProperty().GetFragmentCustomUniforms()
+                self.uniform_calls += 1
+            elif uniforms[PROBE_UNIFORM] != self._probe:
+                uniform_setter(PROBE_UNIFORM, uniforms[PROBE_UNIFORM])(self._uniforms[key])
+                self.uniform_calls += 1
+            self._states[key] = None
+            self._signature_of.pop(key, None)
+            standing.append(self._uniforms[key])
+        for key in set(self._edits) - touched:
+            self._forget(key)
+        self._sent.update(fresh)
+        for signature in set(self._sent) - set(members):
+            self._sent.pop(signature)
+            self._lights_of.pop(signature, None)
+        self._members, self._standing = members, standing
+        self._snapshot, self._shadings, self._lit_points = snapshot, list(shadings), lit_points
+        self._probe = uniforms[PROBE_UNIFORM]
+
+    def _receive(
+        self,
+        actor: vtk.vtkActor,
+        key: str,
+        state: ActorState | str,
+        lights: list[LightShading],
+        triangles: bool,
+        flagged: set[str],
+        uniforms: dict[str, object],
+        fresh: dict[tuple, dict[str, object]],
+    ) -> None:
+        """Bring one receiver's edits and uniforms up to date (a full frame's path)."""
+        pbr = actor.GetProperty().GetInterpolation() == vtk.VTK_PBR
+        signature = (triangles, *_signature(pbr, lights))
+        if signature not in fresh:
+            self._lights_of[signature] = lights
+            fresh[signature] = receiver_uniforms(lights, uniforms)
+        values = fresh[signature]
+        same_edits = (
+            self._states.get(key) is state
+            and self._signature_of.get(key) == signature
+            and key not in flagged
+        )
+        edits = self._edits_of(actor, key)
+        if not same_edits:
+            if signature not in self._replacements:
+                self._replacements[signature] = receiver_replacements(
+                    actor, lights, triangles=triangles
+                )
+            edits.apply(self._replacements[signature])
+            self.edited += 1
+            self._note_problem(key)
+        previous = self._sent.get(signature) if self._signature_of.get(key) == signature else None
+        if key in self._uniforms and previous is not None and previous.keys() == values.keys():
+            changed = [n for n, v in values.items() if not _same(previous[n], v)]
+            for name in changed:
+                uniform_setter(name, values[name])(self._uniforms[key])
+            self.uniform_calls += len(changed)
+        else:
+            edits.set_uniforms(values)
+            self._uniforms[key] = actor.GetShaderProperty().GetFragmentCustomUniforms()
+            self.uniform_calls += len(values)
+        self._states[key] = state
+        self._signature_of[key] = signature
+
+    def _send_changed(self, uniforms: dict[str, object]) -> None:
+        """Set only the uniform values that changed, once converted per signature."""
+        for signature, targets in self._members.items():
+            values = receiver_uniforms(self._lights_of[signature], uniforms)
+            previous = self._sent[signature]
+            if previous.keys() == values.keys():
+                changed = [n for n, v in values.items() if not _same(previous[n], v)]
+            else:
+                changed = list(values)
+            setters = [uniform_setter(name, values[name]) for name in changed]
+            for target in targets:
+                for setter in setters:
+                    setter(target)
+            self.uniform_calls += len(targets) * len(setters)
+            self._sent[signature] = values
+        probe = uniforms[PROBE_UNIFORM]
+        if probe != self._probe:
+            setter = uniform_setter(PROBE_UNIFORM, probe)
+            for target in self._standing:
+                setter(target)
+            self.uniform_calls += len(self._standing)
+            self._probe = probe
+
+    def _edits_of(self, actor: vtk.vtkActor, key: str) -> ShaderEdits:
+        if key not in self._edits:
+            edits = ShaderEdits(actor)
+            edits.check.notify = lambda: self._flagged.add(key)
+            self._edits[key] = edits
+        return self._edits[key]
+
+    def of(self, key: str) -> ShaderEdits | None:
+        """Return the edits kept for the actor ``key``, or ``None`` when it has none.
+
+        Parameters
+        ----------
+        key : str
+            The actor's :func:`pvshadows.scene.triangles.vtk_id`.
+
+        Returns
+        -------
+        ShaderEdits or None
+            What pvshadows put on the actor's shader property.
+        """
+        return self._edits.get(key)
+
+    def _note_problem(self, key: str) -> None:
+        problem = self._edits[key].problem
+        if problem is None:
+            self._problems.pop(key, None)
+        else:
+            self._problems[key] = problem
+
+    def problems(self) -> dict[str, tuple[vtk.vtkActor, str]]:
+        """Return the receivers that show fewer shadows than asked, and why.
+
+        Returns
+        -------
+        dict
+            Actor key to ``(actor, why)``: its shader variant refused the
+            edits (drawn as VTK built it), or some edits did not land in the
+            program VTK compiled.
+        """
+        for key in self._flagged & set(self._edits):
+            self._note_problem(key)
+        return {key: (self._edits[key].actor, why) for key, why in self._problems.items()}
+
+    def _forget(self, key: str) -> None:
+        self._problems.pop(key, None)
+        self._signature_of.pop(key, None)
+        self._uniforms.pop(key, None)
+        self._states.pop(key, None)
+        self._edits.pop(key).remove()
+
+    def clear(self) -> list[str]:
+        """Take every edit and uniform off every actor; return what could not be taken off.
+
+        Every actor is tried, even after one fails, so a fault leaves as few
+        edited shaders behind as it can.
+        """
+        troubles = []
+        for key in list(self._edits):
+            edits = self._edits[key]
+            try:
+                self._forget(key)
+            except Exception as error:
+                troubles.append(
+                    f"removing the edits of {edits.actor.GetClassName()}: "
+                    f"{type(error).__name__}: {error}"
+                )
+            self._edits.pop(key, None)
+        self._snapshot, self._shadings, self._lit_points, self._probe = None, [], set(), None
+        self._members, self._standing, self._sent, self._lights_of = {}, [], {}, {}
+        self._replacements.clear()
+        self._flagged.clear()
+        return troubles

@@ -1,0 +1,350 @@
+"""Assemble the shadow-lookup functions a receiver's fragment shader needs.
+
+Like three.js's shader chunks: each kind of map (cube, spot, sun) has a file
+of primitives, and ``shadow_filters.glsl`` is instantiated once per kind with
+``#define`` lines naming that kind's types and functions and selecting only
+the filters its lights use.
+
+The lights that read one kind of map with one filter form a *group*:
+``shadow_group.glsl`` looks them up from the group's uniform arrays, each
+filter's taps a loop over a uniform count (not a constant the driver
+unrolls), so the shader grows by one small lookup per light, not by lights
+times taps: with constant tap counts, 16 lights with 16-tap PCF took minutes
+to compile on llvmpipe, and 32 never finished.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from typing import cast
+
+import numpy as np
+
+from pvshadows.gl.programs import glsl_source
+
+#: Kinds of depth map and the GLSL names the filter file uses for each.
+KINDS = {
+    "cube": {
+        "file": "shadow_cube.glsl",
+        "PVS_MAP": "PvsCubeMap",
+        "PVS_COMPARE_MAP": "samplerCubeShadow",
+        "PVS_RAW_MAP": "samplerCube",
+        "PVS_FRAME": "pvsCubeFrame",
+        "PVS_TAP": "pvsCubeTap",
+        "PVS_TEXEL": "pvsCubeTexel",
+        "PVS_TEXEL_DEPTH": "pvsCubeTexelDepth",
+        "PVS_SEARCH_RADIUS": "pvsCubeSearchRadius",
+        "PVS_PENUMBRA_RADIUS": "pvsCubePenumbraRadius",
+    },
+    "spot": {
+        "file": "shadow_spot.glsl",
+        "PVS_MAP": "PvsSpotMap",
+        "PVS_COMPARE_MAP": "sampler2DShadow",
+        "PVS_RAW_MAP": "sampler2D",
+        "PVS_FRAME": "pvsSpotFrame",
+        "PVS_TAP": "pvsSpotTap",
+        "PVS_TEXEL": "pvsSpotTexel",
+        "PVS_TEXEL_DEPTH": "pvsSpotTexelDepth",
+        "PVS_SEARCH_RADIUS": "pvsSpotSearchRadius",
+        "PVS_PENUMBRA_RADIUS": "pvsSpotPenumbraRadius",
+    },
+    "sun": {
+        "file": "shadow_sun.glsl",
+        "PVS_MAP": "PvsSunMap",
+        "PVS_COMPARE_MAP": "sampler2DShadow",
+        "PVS_RAW_MAP": "sampler2D",
+        "PVS_FRAME": "pvsSunFrame",
+        "PVS_TAP": "pvsSunTap",
+        "PVS_TEXEL": "pvsSunTexel",
+        "PVS_TEXEL_DEPTH": "pvsSunTexelDepth",
+        "PVS_SEARCH_RADIUS": "pvsSunSearchRadius",
+        "PVS_PENUMBRA_RADIUS": "pvsSunPenumbraRadius",
+    },
+}
+#: The filters of ``shadow_filters.glsl``; "lit" (no map: only the facing and cone
+#: test) serves lights whose map had nothing to draw.
+FILTERS = ("lit", "hard", "pcf", "random", "pcss")
+#: The sampler arrays each filter reads, and the per-light uniform that gives
+#: each light's texture unit.
+GROUP_SAMPLERS = {
+    "lit": (),
+    "hard": ("Depth",),
+    "pcf": ("Depth",),
+    "random": ("Depth", "Offsets"),
+    "pcss": ("Depth", "Raw", "Offsets"),
+}
+
+
+@dataclass(frozen=True)
+class MapLookup:
+    """One light's read of its shadow map, looked up with the other lights of its group.
+
+    The light's own uniforms (``pvsDepth{i}``, ``pvsParams{i}``,
+    ``pvsViewToLight{i}``, ``pvsBias{i}``, ``pvsCone{i}``,
+    ``pvsLightToClip{i}``, ``pvsOffsets{i}``, ``pvsRaw{i}``,
+    ``pvsFilterRadius{i}``) are packed into the group's arrays by
+    :func:`group_uniforms`; its visibility is the GLSL float
+    :attr:`visibility_name`.
+
+    Attributes
+    ----------
+    kind : {"cube", "spot", "sun"}
+        The kind of map.
+    filter : {"lit", "hard", "pcf", "random", "pcss"}
+        The filter.
+    vtk_index : int
+        The light's index among VTK's switched-on lights.
+    taps : int
+        PCF's grid side, or the samples of the random and PCSS filters (0
+        for the others).
+    """
+
+    kind: str
+    filter: str
+    vtk_index: int
+    taps: int = 0
+
+    @property
+    def group(self) -> str:
+        """Name of the light's group, for example ``"CubePcf"``."""
+        return filter_function(self.kind, self.filter)[3:]
+
+    @property
+    def visibility_name(self) -> str:
+        """Name of the global float that holds the light's visibility once looked up."""
+        return f"pvsMapVisibility{self.vtk_index}"
+
+
+def filter_function(kind: str, filter_name: str) -> str:
+    """Return the GLSL name of a filter compiled for a kind of map.
+
+    Parameters
+    ----------
+    kind : {"cube", "spot", "sun"}
+        The kind of map.
+    filter_name : {"hard", "pcf", "random", "pcss"}
+        The filter.
+
+    Returns
+    -------
+    str
+        For example ``"pvsCubePcss"``.
+
+    Examples
+    --------
+    >>> from pvshadows.shaders.library import filter_function
+    >>> filter_function("sun", "pcf")
+    'pvsSunPcf'
+    """
+    return f"pvs{kind.capitalize()}{filter_name.capitalize()}"
+
+
+def _groups(lookups: Iterable[MapLookup]) -> dict[str, list[MapLookup]]:
+    """Group lookups by kind and filter, each group's lights in VTK's order."""
+    groups: dict[str, list[MapLookup]] = {}
+    for lookup in sorted(set(lookups), key=lambda item: (item.vtk_index, item.group)):
+        groups.setdefault(lookup.group, []).append(lookup)
+    return groups
+
+
+def _defines(names: Mapping[str, str]) -> tuple[str, str]:
+    defines = "".join(f"#define {name} {value}".rstrip() + "\n" for name, value in names.items())
+    return defines, "".join(f"#undef {name}\n" for name in names)
+
+
+def _group_instance(group: str, lookups: list[MapLookup]) -> str:
+    first = lookups[0]
+    uniform = f"pvs{group}"
+    names = {
+        f"PVS_GROUP_{first.kind.upper()}": "",
+        f"PVS_GROUP_{first.filter.upper()}": "",
+        "PVS_GROUP_SIZE": str(len(lookups)),
+        "PVS_GROUP_LOOKUP": f"{uniform}Lookup",
+        "PVS_GROUP_RECEIVER": f"pvs{first.kind.capitalize()}Receiver",
+        "PVS_GROUP_VIEW_TO_LIGHT": f"{uniform}ViewToLight",
+        "PVS_GROUP_PACK": f"{uniform}Pack",
+        "PVS_GROUP_CLIP": f"{uniform}LightToClip",
+        "PVS_GROUP_DEPTH": f"{uniform}Depth",
+        "PVS_GROUP_RAW": f"{uniform}Raw",
+        "PVS_GROUP_OFFSETS": f"{uniform}Offsets",
+        "PVS_GROUP_ALL": " ".join(f"PVS_GROUP_ONE({j})" for j in range(len(lookups))),
+    }
+    defines, undefines = _defines(names)
+    return defines + glsl_source("shadow_group.glsl") + undefines
+
+
+def _kind_instance(kind: str, groups: dict[str, list[MapLookup]]) -> str:
+    # hard is PCF's box of 2 x 2 compares cut at one half (shadow_group.glsl)
+    filters = {lookups[0].filter.replace("hard", "pcf") for lookups in groups.values()}
+    names = {k: v for k, v in KINDS[kind].items() if k != "file"}
+    names.update({f"PVS_{f.upper()}": filter_function(kind, f) for f in FILTERS})
+    names.update({f"PVS_WITH_{f.upper()}": "" for f in filters})
+    names["PVS_BOX"] = filter_function(kind, "box")
+    defines, undefines = _defines(names)
+    code = [defines, glsl_source("shadow_filters.glsl")]
+    code.extend(_group_instance(group, lookups) for group, lookups in groups.items())
+    code.append(undefines)
+    return "".join(code)
+
+
+def _gather(lookups: Iterable[MapLookup]) -> str:
+    """Return ``pvsLookupMaps``: it looks up every group and sets each light's visibility."""
+    groups = _groups(lookups)
+    lines = ["void pvsLookupMaps(vec3 posVC, vec3 normalVC)", "{"]
+    for group, members in groups.items():
+        lines.append(f"  float pvs{group}Visibility[{len(members)}];")
+        lines.append(f"  pvs{group}Lookup(posVC, normalVC, pvs{group}Visibility);")
+        lines.extend(
+            f"  {lookup.visibility_name} = pvs{group}Visibility[{j}];"
+            for j, lookup in enumerate(members)
+        )
+    lines.append("}")
+    globals_ = "".join(f"float {m.visibility_name} = 1.0;\n" for ms in groups.values() for m in ms)
+    return globals_ + "\n".join(lines) + "\n"
+
+
+def shadow_functions(lookups: Iterable[MapLookup]) -> str:
+    """Return the GLSL of every lookup a receiver's lights need.
+
+    Parameters
+    ----------
+    lookups : iterable of MapLookup
+        The map lookups of the lights a receiver shows.
+
+    Returns
+    -------
+    str
+        The common code, each kind's primitives once, one instance of the
+        filters per kind holding only the filters asked for, one lookup
+        function per group, and ``pvsLookupMaps(posVC, normalVC)``, which looks every
+        light up and sets its :attr:`MapLookup.visibility_name`.
+
+    Examples
+    --------
+    >>> from pvshadows.shaders.library import MapLookup, shadow_functions
+    >>> code = shadow_functions([MapLookup("cube", "pcf", 0, 4), MapLookup("cube", "pcf", 3, 2)])
+    >>> "#define PVS_WITH_PCF" in code, "#define PVS_WITH_PCSS" in code
+    (True, False)
+    >>> code.count("#define PVS_GROUP_LOOKUP pvsCubePcfLookup")  # one lookup function for both
+    1
+    """
+    groups = _groups(lookups)
+    if not groups:
+        return ""
+    by_kind: dict[str, dict[str, list[MapLookup]]] = {}
+    for group, members in groups.items():
+        by_kind.setdefault(members[0].kind, {})[group] = members
+    code = [glsl_source("shadow_common.glsl")]
+    for kind, kind_groups in by_kind.items():
+        code.append(glsl_source(KINDS[kind]["file"]))
+        code.append(_kind_instance(kind, kind_groups))
+    code.append(_gather(lookup for members in groups.values() for lookup in members))
+    return "\n".join(code)
+
+
+def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int]]:
+    """Return the sampler arrays of the groups: name to (GLSL sampler type, length).
+
+    Parameters
+    ----------
+    lookups : iterable of MapLookup
+        The map lookups of a receiver's lights.
+
+    Returns
+    -------
+    dict
+        For example ``{"pvsCubePcfDepth": ("samplerCubeShadow", 2)}``.
+
+    Examples
+    --------
+    >>> from pvshadows.shaders.library import MapLookup, group_samplers
+    >>> group_samplers([MapLookup("sun", "pcss", 1, 16)])["pvsSunPcssRaw"]
+    ('sampler2D', 1)
+    """
+    samplers = {}
+    for group, members in _groups(lookups).items():
+        kind, filter_name = members[0].kind, members[0].filter
+        types = {
+            "Depth": KINDS[kind]["PVS_COMPARE_MAP"],
+            "Raw": KINDS[kind]["PVS_RAW_MAP"],
+            "Offsets": "sampler3D",
+        }
+        for part in GROUP_SAMPLERS[filter_name]:
+            samplers[f"pvs{group}{part}"] = (types[part], len(members))
+    return samplers
+
+
+#: Prefixes of each light's own uniforms, which :func:`group_uniforms` packs.
+OWN_UNIFORMS = (
+    "pvsDepth",
+    "pvsRaw",
+    "pvsOffsets",
+    "pvsParams",
+    "pvsCone",
+    "pvsBias",
+    "pvsFilterRadius",
+    "pvsViewToLight",
+    "pvsLightToClip",
+)
+
+
+def _matrices(uniforms: Mapping[str, object], prefix: str, members: list[MapLookup]) -> np.ndarray:
+    return np.stack([np.asarray(uniforms[f"{prefix}{m.vtk_index}"], dtype=float) for m in members])
+
+
+def _pack(uniforms: Mapping[str, object], lookup: MapLookup) -> np.ndarray:
+    i = lookup.vtk_index
+    radius = float(cast(float, uniforms.get(f"pvsFilterRadius{i}", 0.0)))
+    columns = [
+        np.asarray(uniforms.get(f"{name}{i}", (0.0,) * 4), dtype=float)
+        for name in ("pvsParams", "pvsCone", "pvsBias")
+    ]
+    return np.column_stack([*columns, (radius, lookup.taps, 0.0, 0.0)]).astype(float)
+
+
+def group_uniforms(
+    lookups: Iterable[MapLookup], uniforms: Mapping[str, object]
+) -> dict[str, object]:
+    """Pack the lights' own uniforms into their groups' arrays.
+
+    Parameters
+    ----------
+    lookups : iterable of MapLookup
+        The map lookups of a receiver's lights.
+    uniforms : Mapping
+        Every light's uniforms by name, as the techniques set them
+        (``pvsParams{i}`` and so on, see :class:`MapLookup`).
+
+    Returns
+    -------
+    dict
+        ``uniforms`` without those lights' own uniforms, with each group's
+        arrays: ``list`` of ``int`` for sampler units, ``(n, 4, 4)`` arrays
+        for matrices.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.shaders.library import MapLookup, group_uniforms
+    >>> own = {"pvsDepth2": 5, "pvsParams2": (1, 0, 0, 0), "pvsViewToLight2": np.eye(4)}
+    >>> packed = group_uniforms([MapLookup("sun", "hard", 2)], {**own, "pvsProbeLight": -1})
+    >>> sorted(packed)
+    ['pvsProbeLight', 'pvsSunHardDepth', 'pvsSunHardPack', 'pvsSunHardViewToLight']
+    >>> packed["pvsSunHardDepth"], packed["pvsSunHardPack"].shape
+    ([5], (1, 4, 4))
+    """
+    groups = _groups(lookups)
+    taken = {f"{name}{m.vtk_index}" for ms in groups.values() for m in ms for name in OWN_UNIFORMS}
+    packed: dict[str, object] = {k: v for k, v in uniforms.items() if k not in taken}
+    for group, members in groups.items():
+        name = f"pvs{group}"
+        packed[f"{name}ViewToLight"] = _matrices(uniforms, "pvsViewToLight", members)
+        packed[f"{name}Pack"] = np.stack([_pack(uniforms, m) for m in members])
+        if members[0].kind == "spot":
+            packed[f"{name}LightToClip"] = _matrices(uniforms, "pvsLightToClip", members)
+        for part in GROUP_SAMPLERS[members[0].filter]:
+            packed[f"{name}{part}"] = [
+                int(cast(int, uniforms[f"pvs{part}{m.vtk_index}"])) for m in members
+            ]
+    return packed
