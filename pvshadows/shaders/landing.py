@@ -19,6 +19,8 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Sequence
 
+from vtkmodules.util.misc import calldata_type
+
 from pvshadows import _vtk as vtk
 
 #: VTK's replacement tags: the shader cache substitutes or keeps them, so they
@@ -167,7 +169,7 @@ class LandingCheck:
             mapper.AddObserver(vtk.vtkCommand.ErrorEvent, self._on_error),
         ]
 
-    @vtk.calldata_type(vtk.VTK_OBJECT)
+    @calldata_type(vtk.VTK_OBJECT)
     def _on_program(self, mapper: vtk.vtkMapper, event: str, program: vtk.vtkShaderProgram) -> None:
         if program is None or not self._edits or self.failed:
             return  # after a failed compile VTK draws with its previous program
@@ -181,7 +183,7 @@ class LandingCheck:
             self.missing = missing
             self._changed()
 
-    @vtk.calldata_type(vtk.VTK_STRING)
+    @calldata_type(vtk.VTK_STRING)
     def _on_error(self, mapper: vtk.vtkMapper, event: str, message: str) -> None:
         if self._edits and COMPILE_FAILED in (message or ""):
             if not self.failed:
