@@ -303,7 +303,7 @@ class RendererShadows:
 
 def _raised_in(error: Exception) -> str:
     """Return where in pvshadows ``error`` was raised, e.g. ``" in CubeDepthPass.render"``."""
-    package = str(Path(__file__).parent)
+    package = str(Path(__file__).parents[1])
     inside = [
         frame
         for frame, _ in traceback.walk_tb(error.__traceback__)
