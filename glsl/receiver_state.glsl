@@ -12,3 +12,12 @@ float pvsProbe = 0.0;
 // where the variant computes its view position; zero (the shading normal
 // stands in, see pvsGeometricNormal) where it does not.
 vec3 pvsFacetVC = vec3(0.0);
+
+// Each shadowed light's visibility and the share of its light a receiver
+// keeps (1 - strength * (1 - visibility)): 1 until its diffuse or radiance
+// hook sets them. The receiver defines PVS_LIGHTS(EACH) as
+// EACH(pvsVisibility<i>, pvsKept<i>) for every light it shows.
+#define PVS_LIGHT_STATE(visibility, kept) float visibility = 1.0; float kept = 1.0;
+PVS_LIGHTS(PVS_LIGHT_STATE)
+#undef PVS_LIGHT_STATE
+#undef PVS_LIGHTS

@@ -23,9 +23,10 @@
 //   PVS_GROUP_CLIP           uniform mat4[]: light space to the spot map's clip space
 //   PVS_GROUP_DEPTH, PVS_GROUP_RAW, PVS_GROUP_OFFSETS   sampler arrays: the maps
 //                            for comparisons, plain views of them (PCSS), disk offsets
-//   PVS_GROUP_ALL            PVS_GROUP_ONE(0) PVS_GROUP_ONE(1) ...: every light,
-//                            by constant index (GLSL 1.50 indexes sampler arrays
-//                            with constants only)
+//   PVS_GROUP_ALL(EACH)      EACH(0, pvsMapVisibility<i>) EACH(1, ...) ...: every
+//                            light, by constant index (GLSL 1.50 indexes sampler
+//                            arrays with constants only) and the global float its
+//                            visibility goes to
 //
 // The macros are on one line each: GLSL 1.50 has no line continuation.
 
@@ -54,14 +55,19 @@
 #define PVS_GROUP_FILTER(j, r) PVS_PCSS(PVS_GROUP_DEPTH[j], PVS_GROUP_RAW[j], PVS_GROUP_MAP(j), r, PVS_GROUP_OFFSETS[j], PVS_GROUP_TAPS(j))
 #endif
 
-#define PVS_GROUP_ONE(j) visibility[j] = PVS_GROUP_FILTER(j, PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW_TO_LIGHT[j], PVS_GROUP_PACK[j][2].xyz, posVC, normalVC));
+#define PVS_GROUP_ONE(j, visibility) visibility = PVS_GROUP_FILTER(j, PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW_TO_LIGHT[j], PVS_GROUP_PACK[j][2].xyz, posVC, normalVC));
+#define PVS_GROUP_GLOBAL(j, visibility) float visibility = 1.0;
 
-void PVS_GROUP_LOOKUP(vec3 posVC, vec3 normalVC, out float visibility[PVS_GROUP_SIZE])
+// Each light's visibility, 1 until the lookup sets it.
+PVS_GROUP_ALL(PVS_GROUP_GLOBAL)
+
+void PVS_GROUP_LOOKUP(vec3 posVC, vec3 normalVC)
 {
-  PVS_GROUP_ALL
+  PVS_GROUP_ALL(PVS_GROUP_ONE)
 }
 
 #undef PVS_GROUP_MAP
 #undef PVS_GROUP_TAPS
 #undef PVS_GROUP_FILTER
 #undef PVS_GROUP_ONE
+#undef PVS_GROUP_GLOBAL

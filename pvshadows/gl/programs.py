@@ -82,12 +82,12 @@ def with_defines(source: str, defines: Mapping[str, object] | None = None) -> st
 
     Examples
     --------
-    >>> from pvshadows.gl.programs import with_defines
-    >>> print(with_defines("#version 150\nvoid main() {}", {"TAPS": 4, "SIX_PASSES": True}))
+    >>> from pvshadows.gl.programs import glsl_source, with_defines
+    >>> stage = with_defines(glsl_source("distance_depth.frag"), {"TAPS": 4, "SIX_PASSES": True})
+    >>> print("\n".join(stage.splitlines()[:3]))
     #version 150
     #define TAPS 4
     #define SIX_PASSES
-    void main() {}
     """
     version, _, body = source.partition("\n")
     lines = [version]

@@ -150,7 +150,7 @@ def _groups(lookups: Iterable[MapLookup]) -> dict[str, list[MapLookup]]:
 
 def _defines(names: Mapping[str, str]) -> tuple[str, str]:
     defines = "".join(f"#define {name} {value}".rstrip() + "\n" for name, value in names.items())
-    return defines, "".join(f"#undef {name}\n" for name in names)
+    return defines, "".join(f"#undef {name.partition('(')[0]}\n" for name in names)
 
 
 def _group_instance(group: str, lookups: list[MapLookup]) -> str:
@@ -168,8 +168,9 @@ def _group_instance(group: str, lookups: list[MapLookup]) -> str:
         "PVS_GROUP_DEPTH": f"{uniform}Depth",
         "PVS_GROUP_RAW": f"{uniform}Raw",
         "PVS_GROUP_OFFSETS": f"{uniform}Offsets",
-        "PVS_GROUP_ALL": " ".join(f"PVS_GROUP_ONE({j})" for j in range(len(lookups))),
     }
+    each = " ".join(f"EACH({j}, {lookup.visibility_name})" for j, lookup in enumerate(lookups))
+    names["PVS_GROUP_ALL(EACH)"] = each
     defines, undefines = _defines(names)
     return defines + glsl_source("shadow_group.glsl") + undefines
 
@@ -189,19 +190,10 @@ def _kind_instance(kind: str, groups: dict[str, list[MapLookup]]) -> str:
 
 
 def _gather(lookups: Iterable[MapLookup]) -> str:
-    """Return ``pvsLookupMaps``: it looks up every group and sets each light's visibility."""
-    groups = _groups(lookups)
-    lines = ["void pvsLookupMaps(vec3 posVC, vec3 normalVC)", "{"]
-    for group, members in groups.items():
-        lines.append(f"  float pvs{group}Visibility[{len(members)}];")
-        lines.append(f"  pvs{group}Lookup(posVC, normalVC, pvs{group}Visibility);")
-        lines.extend(
-            f"  {lookup.visibility_name} = pvs{group}Visibility[{j}];"
-            for j, lookup in enumerate(members)
-        )
-    lines.append("}")
-    globals_ = "".join(f"float {m.visibility_name} = 1.0;\n" for ms in groups.values() for m in ms)
-    return globals_ + "\n".join(lines) + "\n"
+    """Return ``pvsLookupMaps``: it looks up every group, each setting its lights' visibilities."""
+    calls = " ".join(f"EACH(pvs{group}Lookup)" for group in _groups(lookups))
+    defines, undefines = _defines({"PVS_LOOKUP_GROUPS(EACH)": calls})
+    return defines + glsl_source("lookup_maps.glsl") + undefines
 
 
 def shadow_functions(lookups: Iterable[MapLookup]) -> str:

@@ -219,11 +219,9 @@ def receiver_replacements(
     defines = dict.fromkeys(define for light in lights for define in light.defines)
     lookups = [lookup for light in lights for lookup in light.needs]
     functions = "".join(f"#define {name}\n" for name in defines)
+    each = " ".join(f"EACH(pvsVisibility{i}, pvsKept{i})" for i in (x.vtk_index for x in lights))
+    functions += f"#define PVS_LIGHTS(EACH) {each}\n".replace(" \n", "\n")
     functions += glsl_source("receiver_state.glsl") + glsl_source("receiver_normal.glsl")
-    functions += "".join(
-        f"float pvsVisibility{i} = 1.0;\nfloat pvsKept{i} = 1.0;\n"
-        for i in (light.vtk_index for light in lights)
-    )
     functions += shadow_functions(lookups)
     functions += "".join(glsl_source(source) for source in sources)
     edits = [
