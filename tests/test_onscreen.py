@@ -22,21 +22,40 @@ from onscreen_session import CASES, STEPS, apply_camera, build
 
 from pvshadows.tools.info import TRIALS
 
-pytestmark = pytest.mark.skipif(
-    shutil.which("Xvfb") is None,
-    reason="Xvfb is not installed (Debian/Ubuntu package xvfb; .ci/run installs it)",
-)
+pytestmark = [
+    pytest.mark.skipif(
+        shutil.which("Xvfb") is None,
+        reason="Xvfb is not installed (Debian/Ubuntu package xvfb; .ci/run installs it)",
+    ),
+    # One worker runs the whole module, so the recorded session runs once.
+    pytest.mark.xdist_group("onscreen"),
+]
 
 SESSION = Path(__file__).with_name("onscreen_session.py")
 
 
 @pytest.fixture(scope="module")
 def x_display(tmp_path_factory):
-    """Start Xvfb on a free display number; yield the environment of a process using it."""
+    """Start Xvfb on a free display number; yield the environment of a process using it.
+
+    ``-noreset``: by default Xvfb resets when its last client disconnects, and a
+    connection opened during the reset is refused (2 % of back-to-back opens
+    here); the session closes and opens windows and display connections in turn.
+    """
     log = open(tmp_path_factory.mktemp("xvfb") / "xvfb.log", "w")
     read_end, write_end = os.pipe()
     server = subprocess.Popen(
-        ["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1024x768x24", "-nolisten", "tcp"],
+        [
+            "Xvfb",
+            "-displayfd",
+            str(write_end),
+            "-screen",
+            "0",
+            "1024x768x24",
+            "-nolisten",
+            "tcp",
+            "-noreset",
+        ],
         pass_fds=(write_end,),
         stdout=log,
         stderr=log,
