@@ -78,12 +78,10 @@ def test_volumes_are_pixel_exact_with_the_camera_inside_the_shadow():
     assert missed + false <= 0.0005 * compared
 
 
-# The sun's map is fitted to the ant's bounding box across the light (45 units
-# for an ant 32 long), so its texels are coarser than they need be: 0.53 %.
-@pytest.mark.parametrize(
-    ("kind", "bound"), [("point", 0.005), ("spot", 0.005), ("directional", 0.0055)]
-)
-def test_thin_legs_of_the_ant_at_the_default_quality(kind, bound):
+# The bound, 0.5 % of the ant's own lit-side pixels, for every kind of
+# light (measured: sun 0.47 %, 18 missed and 12 false of 6 449).
+@pytest.mark.parametrize("kind", ["point", "spot", "directional"])
+def test_thin_legs_of_the_ant_at_the_default_quality(kind):
     pl = pv.Plotter(off_screen=True, window_size=[480, 360], lighting="none")
     pl.add_mesh(pv.Plane(center=(0, 0, -20), i_size=120, j_size=120), name="ground")
     pl.add_mesh(examples.load_ant(), color="tan", name="ant")
@@ -99,7 +97,7 @@ def test_thin_legs_of_the_ant_at_the_default_quality(kind, bound):
     reference = pl.shadows._trace(light)
     missed, false, compared = edge_counts(pl, light, reference, among=reference.mesh_index == 1)
     assert compared > 5_000  # the ant's own lit-side pixels
-    assert missed + false <= bound * compared
+    assert missed + false <= 0.005 * compared
     assert missed <= 2 * false + 10
     assert false <= 2 * missed + 10
 
