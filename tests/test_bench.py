@@ -10,6 +10,7 @@ import pytest
 from pvshadows.tools.bench import BenchCase, BenchRow, quick_cases, run_bench, steady, write_table
 from pvshadows.tools.bench_presets import (
     BALANCED_WITHIN,
+    COST_TIE,
     DRAFT_WITHIN,
     choose_presets,
     dominated_by,
@@ -74,6 +75,29 @@ def test_a_promise_no_setting_keeps_is_said_so():
     assert balanced.settings["resolution"] == 1024  # the most accurate of the soft settings
     lines = "\n".join(presets_lines(choose_presets(rows), rows))
     assert "| balanced | spot |" in lines and "| no |" in lines
+
+
+def test_costs_within_the_noise_tie_and_the_more_accurate_wins():
+    rows = [r for r in _frontier() if "pcf_taps=16" not in r.setting]
+    # 512 texels 10 % cheaper than 1024: within COST_TIE, so the more accurate 1024 wins.
+    rows += [_row(light, "resolution=1024 filter=hard", 0.002, 1.42) for light in LIGHTS]
+    rows += [_row(light, "resolution=512 filter=pcf pcf_taps=4", 0.0015, 1.55) for light in LIGHTS]
+    picks = choose_presets(rows)
+    assert picks["draft"].settings["resolution"] == 1024
+    assert picks["balanced"].settings["resolution"] == 1024
+    # Beyond the tie the cheaper one wins, as long as it keeps the promise.
+    faster = [r for r in rows if r.setting != "resolution=512 filter=hard"]
+    faster += [_row(light, "resolution=512 filter=hard", 0.004, 1.2) for light in LIGHTS]
+    assert choose_presets(faster)["draft"].settings["resolution"] == 512
+    assert 1.42 > (1.0 + COST_TIE) * 1.2
+
+
+def test_draft_is_a_hard_edged_map():
+    rows = [
+        *_frontier(),
+        *(_row(lt, "resolution=256 filter=pcf pcf_taps=4", 0.001, 0.9) for lt in LIGHTS),
+    ]
+    assert choose_presets(rows)["draft"].settings["filter"] == "hard"
 
 
 def test_a_setting_not_measured_for_every_light_is_no_candidate():
