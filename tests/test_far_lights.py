@@ -11,7 +11,13 @@ SMALL = (400, 300)
 
 @pytest.mark.parametrize(
     ("distance", "map_kind"),
-    [(1e2, "a perspective map"), (1e3, "a perspective map"), (1e6, "an orthographic map")],
+    [
+        (1e2, "a perspective map"),
+        (1e3, "a perspective map"),
+        (1e4, "an orthographic map"),  # a perspective map rounded depths: 0.57 % wrong
+        (2e4, "an orthographic map"),  # 7.3 %
+        (1e6, "an orthographic map"),
+    ],
 )
 def test_a_far_point_light_keeps_its_shadows(distance, map_kind):
     scene = standard_scene(window_size=SMALL, light_position=(distance, distance / 2, distance))
@@ -22,6 +28,22 @@ def test_a_far_point_light_keeps_its_shadows(distance, map_kind):
     assert map_kind in " ".join(report.notes)
     assert error.misclassified <= 0.002
     assert error.missed_shadow <= 0.02
+    assert np.nansum(scene.plotter.shadows.reference(scene.light) < 0.5) > 4000
+
+
+@pytest.mark.parametrize("distance", [1e3, 1e4, 1e5])
+def test_a_far_spot_light_keeps_its_shadows(distance):
+    # Before: 0.02 %, 0.44 % and 26 % wrong (float32 depths of a perspective map so far away).
+    scene = standard_scene(
+        window_size=SMALL, light="spot", light_position=(distance, distance / 2, distance)
+    )
+    scene.light.cone_angle = 60.0
+    scene.light.focal_point = (0.0, 0.0, 0.0)
+    scene.plotter.shadows.enable(filter="hard")
+    error = scene.plotter.shadows.measure(scene.light)
+    notes = " ".join(scene.plotter.shadows.last_frame.lights[0].notes)
+    assert ("an orthographic map" in notes) == (distance > 1e3)
+    assert error.misclassified <= 0.001
     assert np.nansum(scene.plotter.shadows.reference(scene.light) < 0.5) > 4000
 
 
