@@ -53,6 +53,7 @@ def _preset_rows():
         for light in ("point", "spot", "directional")
         for t, setting in [
             ("cubemap" if light == "point" else "map", "resolution=512 filter=pcf pcf_taps=4"),
+            ("cubemap" if light == "point" else "map", "resolution=512 filter=hard"),
             ("volume", "extrude=gpu zmode=auto"),
         ]
     ]
