@@ -15,6 +15,7 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
 from pvshadows.gl.textures import DepthCube
+from pvshadows.gl.transmittance_textures import TransmittanceCube, TransmittanceTexture
 from pvshadows.model.plan import LightPlan
 from pvshadows.model.report import PassReport
 from pvshadows.passes.cube_depth import CubeCaster, CubeDepthPass, caster_face_mask
@@ -141,7 +142,8 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             return reports
         far = state.far
 
-        def draw(target) -> list[PassReport]:
+        def draw(target: TransmittanceTexture) -> list[PassReport]:
+            assert isinstance(target, TransmittanceCube)
             drawn = [
                 TranslucentCaster(
                     context.buffers.get(caster),
@@ -156,7 +158,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             )
 
         key = (plan.pose.key(), settings.resolution, settings.passes, far)
-        state.companion, drawn = self._companions.update(
+        state.companion, companion_reports = self._companions.update(
             state.companion,
             resolution=settings.resolution,
             cube=True,
@@ -164,7 +166,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             frame=context.frame,
             draw=draw,
         )
-        return reports + drawn
+        return reports + companion_reports
 
     def _update_depth(
         self, plan: LightPlan, context: FrameContext, state: CubeState, casters: list

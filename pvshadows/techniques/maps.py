@@ -18,6 +18,7 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
 from pvshadows.gl.textures import DepthMap
+from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import LightPlan
 from pvshadows.model.report import PassReport
 from pvshadows.model.settings import ShadowSettings
@@ -152,7 +153,9 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             state.key = None
             state.drop_companion()
             return [PassReport("map depth", "skipped", "no caster inside the spot's cone")]
-        key = (pose.key(), settings.resolution, settings.cull_front, state.texel, far)
+        assert state.light_to_clip is not None
+        projection = (state.light_to_clip.tobytes(), far)
+        key = (pose.key(), settings.resolution, settings.cull_front, projection)
         detail = f"{len(inside)} of {len(context.snapshot.casters)} casters inside the cone"
         return self._render(
             state, key, inside, context, far, along_z=False, detail=detail, settings=settings
@@ -228,7 +231,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         assert state.light_to_clip is not None and state.world_to_light is not None
         light_to_clip, world_to_light = state.light_to_clip, state.world_to_light
 
-        def draw(target) -> list[PassReport]:
+        def draw(target: TransmittanceTexture) -> list[PassReport]:
             drawn = [
                 TranslucentCaster(
                     context.buffers.get(caster),
@@ -241,7 +244,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
                 target, drawn, light_to_clip, depth_range, along_z=along_z, timer=context.timer
             )
 
-        state.companion, drawn = self._companions.update(
+        state.companion, companion_reports = self._companions.update(
             state.companion,
             resolution=settings.resolution,
             cube=False,
@@ -249,7 +252,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             frame=context.frame,
             draw=draw,
         )
-        return reports + drawn
+        return reports + companion_reports
 
     def _render_depth(
         self,
