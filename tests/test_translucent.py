@@ -8,6 +8,7 @@ import pyvista as pv
 from test_reference import camera_view, ground, point_light, rectangle, sphere
 
 from conftest import draw, spot_box_scene
+from pvshadows.shaders.library import MapLookup, group_uniforms, shadow_functions
 from pvshadows.verify.reference import SceneMesh, trace_reference
 
 
@@ -180,3 +181,39 @@ def test_planar_and_volume_shadows_let_the_casters_transmittance_through(techniq
     pl.actors["box"].prop.opacity = 1.0
     pl.render()
     assert np.nanmin(pl.shadows.visibility(spot)[shadow]) == 0.0  # the mask follows opacity
+
+
+def test_lights_with_and_without_translucent_casters_are_looked_up_in_their_own_groups():
+    lookups = [MapLookup("spot", "hard", 0, 2, translucent=True), MapLookup("spot", "hard", 1, 2)]
+    code = shadow_functions(lookups)
+    assert code.count("#define PVS_WITH_TRANSMIT") == 1
+    assert code.count("#define PVS_GROUP_TRANSLUCENT") == 1
+    assert code.count("#define PVS_GROUP_LOOKUP pvsSpotHard") == 2
+    own = {"pvsDepth0": 3, "pvsTransmit0": 4, "pvsDepth1": 5}
+    for i in (0, 1):
+        own |= {f"pvsParams{i}": (1, 0, 0, 0), f"pvsViewToLight{i}": np.eye(4)}
+        own[f"pvsLightToClip{i}"] = np.eye(4)
+    packed = group_uniforms(lookups, own)
+    assert packed["pvsSpotHardTranslucentTransmit"] == [4]
+    assert packed["pvsSpotHardTranslucentDepth"] == [3] and packed["pvsSpotHardDepth"] == [5]
+    assert "pvsSpotHardTransmit" not in packed
+
+    pl = pv.Plotter(off_screen=True, lighting="none", window_size=(400, 300))
+    pl.add_mesh(pv.Plane(i_size=8, j_size=8), color="white", name="ground")
+    pl.add_mesh(pv.Cube(center=(0, 0, 1)), opacity=0.5, name="glass")
+    pl.add_mesh(pv.Sphere(center=(3, 3, 0.5), radius=0.4), name="stone")
+    over_glass = pv.Light(position=(0.2, 0.1, 5), focal_point=(0, 0, 0), cone_angle=30)
+    over_stone = pv.Light(position=(3, 3, 4), focal_point=(3, 3, 0), cone_angle=20)
+    for light in (over_glass, over_stone):
+        light.positional = True
+        pl.add_light(light)
+    pl.camera_position = [(8, -8, 8), (1, 1, 0.5), (0, 0, 1)]
+    pl.shadows.enable(technique="map", filter="pcf")
+    draw(pl)
+    frame = pl.shadows.last_frame
+    assert frame.failure is None and frame.receivers == []
+    names = [[p.name for p in light.passes] for light in frame.lights]
+    assert names == [["map depth", "transmittance"], ["map depth"]]
+    for light in (over_glass, over_stone):
+        error = pl.shadows.measure(light)
+        assert error.shadow_pixels > 400 and error.misclassified <= 0.01
