@@ -136,11 +136,46 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         position = plan.pose.position
         state.nearest, state.far = distance_range(position, plan.casters)
         opaque, translucent = split_casters(plan.casters)
-        reports = self._update_depth(plan, context, state, opaque)
+        companion = self._update_companion(plan, context, state, translucent)
+        state.drawn = bool(opaque)
+        if not opaque:
+            state.key = None
+            return [PassReport("cube depth", "skipped", "every caster is translucent"), *companion]
+        key = (
+            plan.pose.key(),
+            settings.resolution,
+            settings.passes,
+            settings.cull_front,
+            state.far,
+            tuple(c.key() for c in opaque),
+        )
+        if key == state.key:
+            reused = f"light and casters unchanged since frame {state.frame}: map still right"
+            return [PassReport("cube depth", "reused", reused), *companion]
+        casters = [
+            CubeCaster(
+                context.buffers.get(caster),
+                translation(-position) @ caster.model_matrix(),
+                caster_face_mask(caster.bounds - position),
+                face_to_cull(caster, settings),
+            )
+            for caster in opaque
+        ]
+        assert self._pass is not None
+        reports = self._pass.render(state.cube, casters, state.far, settings.passes, context.timer)
+        state.key, state.frame = key, context.frame
+        return reports + companion
+
+    def _update_companion(
+        self, plan: LightPlan, context: FrameContext, state: CubeState, translucent: list
+    ) -> list[PassReport]:
+        """Draw the light's translucent casters into its companion, or drop it when none."""
+        settings, pose = plan.settings, plan.pose
+        assert settings is not None and pose is not None
         if not translucent:
             state.drop_companion()
-            return reports
-        far = state.far
+            return []
+        position, far = pose.position, state.far
 
         def draw(target: TransmittanceTexture) -> list[PassReport]:
             assert isinstance(target, TransmittanceCube)
@@ -157,8 +192,8 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
                 target, drawn, far, settings.passes, context.timer
             )
 
-        key = (plan.pose.key(), settings.resolution, settings.passes, far)
-        state.companion, companion_reports = self._companions.update(
+        key = (pose.key(), settings.resolution, settings.passes, far)
+        state.companion, reports = self._companions.update(
             state.companion,
             resolution=settings.resolution,
             cube=True,
@@ -166,45 +201,6 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             frame=context.frame,
             draw=draw,
         )
-        return reports + companion_reports
-
-    def _update_depth(
-        self, plan: LightPlan, context: FrameContext, state: CubeState, casters: list
-    ) -> list[PassReport]:
-        settings, pose = plan.settings, plan.pose
-        assert settings is not None and pose is not None
-        state.drawn = bool(casters)
-        if not casters:
-            state.key = None
-            return [PassReport("cube depth", "skipped", "every caster is translucent")]
-        key = (
-            pose.key(),
-            settings.resolution,
-            settings.passes,
-            settings.cull_front,
-            state.far,
-            tuple(c.key() for c in casters),
-        )
-        if key == state.key:
-            return [
-                PassReport(
-                    "cube depth",
-                    "reused",
-                    f"light and casters unchanged since frame {state.frame}: map still right",
-                )
-            ]
-        drawn = [
-            CubeCaster(
-                context.buffers.get(caster),
-                translation(-pose.position) @ caster.model_matrix(),
-                caster_face_mask(caster.bounds - pose.position),
-                face_to_cull(caster, settings),
-            )
-            for caster in casters
-        ]
-        assert self._pass is not None
-        reports = self._pass.render(state.cube, drawn, state.far, settings.passes, context.timer)
-        state.key, state.frame = key, context.frame
         return reports
 
     def release(self) -> None:

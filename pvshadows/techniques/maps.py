@@ -215,19 +215,53 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         settings: ShadowSettings,
     ) -> list[PassReport]:
         opaque, translucent = split_casters(casters)
-        reports = self._render_depth(
-            state,
-            (*key, tuple(c.key() for c in opaque)),
-            opaque,
-            context,
+        companion = self._render_companion(
+            state, key, translucent, context, depth_range, along_z=along_z, settings=settings
+        )
+        state.drawn = bool(opaque)
+        if not opaque:
+            state.key = None
+            return [PassReport("map depth", "skipped", "every caster is translucent"), *companion]
+        key = (*key, tuple(c.key() for c in opaque))
+        if key == state.key:
+            reused = f"light, casters and coverage unchanged since frame {state.frame}"
+            return [PassReport("map depth", "reused", reused), *companion]
+        assert self._pass is not None and state.light_to_clip is not None
+        drawn = [
+            MapCaster(
+                context.buffers.get(caster),
+                state.world_to_light @ caster.model_matrix(),
+                face_to_cull(caster, settings),
+            )
+            for caster in opaque
+        ]
+        reports = self._pass.render(
+            state.depth,
+            drawn,
+            state.light_to_clip,
             depth_range,
             along_z=along_z,
+            timer=context.timer,
             detail=detail,
-            settings=settings,
         )
+        state.key, state.frame = key, context.frame
+        return reports + companion
+
+    def _render_companion(
+        self,
+        state: MapState,
+        key: tuple,
+        translucent: list,
+        context: FrameContext,
+        depth_range: float,
+        *,
+        along_z: bool,
+        settings: ShadowSettings,
+    ) -> list[PassReport]:
+        """Draw the light's translucent casters into its companion, or drop it when none."""
         if not translucent:
             state.drop_companion()
-            return reports
+            return []
         assert state.light_to_clip is not None and state.world_to_light is not None
         light_to_clip, world_to_light = state.light_to_clip, state.world_to_light
 
@@ -244,7 +278,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
                 target, drawn, light_to_clip, depth_range, along_z=along_z, timer=context.timer
             )
 
-        state.companion, companion_reports = self._companions.update(
+        state.companion, reports = self._companions.update(
             state.companion,
             resolution=settings.resolution,
             cube=False,
@@ -252,51 +286,6 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             frame=context.frame,
             draw=draw,
         )
-        return reports + companion_reports
-
-    def _render_depth(
-        self,
-        state: MapState,
-        key: tuple,
-        casters: list,
-        context: FrameContext,
-        depth_range: float,
-        *,
-        along_z: bool,
-        detail: str,
-        settings: ShadowSettings,
-    ) -> list[PassReport]:
-        state.drawn = bool(casters)
-        if not casters:
-            state.key = None
-            return [PassReport("map depth", "skipped", "every caster is translucent")]
-        if key == state.key:
-            return [
-                PassReport(
-                    "map depth",
-                    "reused",
-                    f"light, casters and coverage unchanged since frame {state.frame}",
-                )
-            ]
-        assert self._pass is not None and state.light_to_clip is not None
-        drawn = [
-            MapCaster(
-                context.buffers.get(caster),
-                state.world_to_light @ caster.model_matrix(),
-                face_to_cull(caster, settings),
-            )
-            for caster in casters
-        ]
-        reports = self._pass.render(
-            state.depth,
-            drawn,
-            state.light_to_clip,
-            depth_range,
-            along_z=along_z,
-            timer=context.timer,
-            detail=detail,
-        )
-        state.key, state.frame = key, context.frame
         return reports
 
     def release(self) -> None:
