@@ -273,9 +273,10 @@ class ShadowsComponent:
         Raises
         ------
         TypeError
-            If ``cast`` is not a bool or ``transmittance`` not a number.
+            If ``actor`` is not an actor, ``cast`` not a bool or
+            ``transmittance`` not a number.
         ValueError
-            If ``transmittance`` is not from 0 to 1.
+            If ``actor`` is not in this plotter or ``transmittance`` not from 0 to 1.
 
         Notes
         -----
