@@ -42,10 +42,10 @@ void pvsCubeFace(vec3 d, out vec3 major, out vec3 s, out vec3 t)
 }
 
 // The texel grid of the receiver's face, on the plane one unit along its major axis.
-PvsTexelFrame pvsCubeFrame(samplerCubeShadow cube, PvsCubeMap map, PvsReceiver r)
+PvsTexelFrame pvsCubeFrameOfSize(float size, PvsCubeMap map, PvsReceiver r)
 {
   PvsTexelFrame f;
-  f.size = float(textureSize(cube, 0).x);
+  f.size = size;
   vec3 major, s, t;
   pvsCubeFace(r.q, major, s, t);
   vec3 onFace = r.q / dot(r.q, major);
@@ -54,6 +54,11 @@ PvsTexelFrame pvsCubeFrame(samplerCubeShadow cube, PvsCubeMap map, PvsReceiver r
   f.du = s * (2.0 / f.size);
   f.dv = t * (2.0 / f.size);
   return f;
+}
+
+PvsTexelFrame pvsCubeFrame(samplerCubeShadow cube, PvsCubeMap map, PvsReceiver r)
+{
+  return pvsCubeFrameOfSize(float(textureSize(cube, 0).x), map, r);
 }
 
 vec2 pvsCubeTap(PvsCubeMap map, PvsReceiver r, PvsTexelFrame f, vec2 offset)
@@ -90,6 +95,15 @@ float pvsCubeTexelDepth(samplerCube raw, PvsCubeMap map, PvsReceiver r, PvsTexel
   vec3 direction = pvsCubeTexelDirection(f, t);
   receiverDepth = pvsPlaneDistance(r, direction) - r.bias;
   return texture(raw, direction).r * map.params.x;
+}
+
+// What the translucent casters let through at the texel holding t, as pvsSpotTransmitted.
+float pvsCubeTransmitted(samplerCube transmit, PvsCubeMap map, PvsReceiver r, PvsTexelFrame f, vec2 t)
+{
+  vec3 direction = pvsCubeTexelDirection(f, t);
+  vec4 stored = texture(transmit, direction);
+  float depth = pvsPlaneDistance(r, direction) - r.bias;
+  return depth > stored.a * map.params.x ? stored.r : 1.0;
 }
 
 float pvsCubeSearchRadius(PvsCubeMap map, PvsReceiver r)

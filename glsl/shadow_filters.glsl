@@ -10,10 +10,16 @@
 //   PVS_TEXEL         (map, kind, receiver, frame, t) -> visibility of the texel holding t
 //   PVS_TEXEL_DEPTH   (raw, kind, receiver, frame, t, out receiverDepth) -> its stored depth
 //   PVS_SEARCH_RADIUS / PVS_PENUMBRA_RADIUS   in texels, for PCSS
+//   PVS_TRANSMIT_MAP  sampler type of the transmittance companion (sampler2D, samplerCube)
+//   PVS_FRAME_OF_SIZE (size, kind, receiver) -> PvsTexelFrame, as PVS_FRAME for a map of size
+//   PVS_TEXEL_TRANSMITTED (transmit, kind, receiver, frame, t) -> what the translucent
+//                     casters let through at the texel holding t
 //   PVS_LIT, PVS_PCF, PVS_RANDOM, PVS_PCSS   names of the filter functions (hard is
 //                                            PCF's 2 x 2 box cut at one half: shadow_group.glsl)
 //   PVS_BOX                                  name of the box PCF sums
-//   PVS_WITH_LIT, PVS_WITH_PCF, ...          which to compile
+//   PVS_TRANSMIT                             name of the translucent casters' lookup
+//   PVS_WITH_LIT, PVS_WITH_PCF, ...          which to compile (PVS_WITH_TRANSMIT: the
+//                                            lookup of lights with translucent casters)
 //
 // Every compare reads one texel at its centre against the receiver's own
 // tangent plane along the ray through that centre (see PvsTexelFrame), so no
@@ -122,5 +128,18 @@ float PVS_PCSS(PVS_COMPARE_MAP depthMap, PVS_RAW_MAP raw, PVS_MAP kind, PvsRecei
   }
   float radius = clamp(PVS_PENUMBRA_RADIUS(kind, r, depthSum / blockers), 0.5, 48.0);
   return PVS_RANDOM(depthMap, kind, r, offsets, samples, radius);
+}
+#endif
+
+#ifdef PVS_WITH_TRANSMIT
+// What the light's translucent casters let through to the receiver, read once
+// at its own texel of the transmittance companion (the same grid as the depth
+// map): the product of every translucent surface's 1 - opacity over it where
+// the receiver lies beyond the nearest of them. The opaque casters' filter
+// result is multiplied by it.
+float PVS_TRANSMIT(PVS_TRANSMIT_MAP transmit, PVS_MAP kind, PvsReceiver r)
+{
+  PvsTexelFrame f = PVS_FRAME_OF_SIZE(float(textureSize(transmit, 0).x), kind, r);
+  return PVS_TEXEL_TRANSMITTED(transmit, kind, r, f, f.at);
 }
 #endif

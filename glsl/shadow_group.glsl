@@ -23,6 +23,9 @@
 //   PVS_GROUP_CLIP           uniform mat4[]: light space to the spot map's clip space
 //   PVS_GROUP_DEPTH, PVS_GROUP_RAW, PVS_GROUP_OFFSETS   sampler arrays: the maps
 //                            for comparisons, plain views of them (PCSS), disk offsets
+//   PVS_GROUP_TRANSLUCENT    defined for lights whose casters include translucent
+//                            ones: the filter's result is multiplied by PVS_TRANSMIT
+//                            read from PVS_GROUP_TRANSMIT, the companions' sampler array
 //   PVS_GROUP_ALL(EACH)      EACH(0, pvsMapVisibility<i>) EACH(1, ...) ...: every
 //                            light, by constant index (GLSL 1.50 indexes sampler
 //                            arrays with constants only) and the global float its
@@ -55,7 +58,11 @@
 #define PVS_GROUP_FILTER(j, r) PVS_PCSS(PVS_GROUP_DEPTH[j], PVS_GROUP_RAW[j], PVS_GROUP_MAP(j), r, PVS_GROUP_OFFSETS[j], PVS_GROUP_TAPS(j))
 #endif
 
+#if defined(PVS_GROUP_TRANSLUCENT)
+#define PVS_GROUP_ONE(j, visibility) { PvsReceiver receiver = PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW_TO_LIGHT[j], PVS_GROUP_PACK[j][2].xyz, posVC, normalVC); visibility = PVS_GROUP_FILTER(j, receiver) * PVS_TRANSMIT(PVS_GROUP_TRANSMIT[j], PVS_GROUP_MAP(j), receiver); }
+#else
 #define PVS_GROUP_ONE(j, visibility) visibility = PVS_GROUP_FILTER(j, PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW_TO_LIGHT[j], PVS_GROUP_PACK[j][2].xyz, posVC, normalVC));
+#endif
 #define PVS_GROUP_GLOBAL(j, visibility) float visibility = 1.0;
 
 // Each light's visibility, 1 until the lookup sets it.

@@ -21,10 +21,10 @@ PvsReceiver pvsSpotReceiver(PvsSpotMap map, mat4 viewToLight, vec3 bias, vec3 po
 // The map's texel grid: the rows x, y and w of lightToClip (a projection
 // from the light's position) give the direction through map position (X, Y)
 // as cross(x - X w, y - Y w), which is linear in X and Y.
-PvsTexelFrame pvsSpotFrame(sampler2DShadow depthMap, PvsSpotMap map, PvsReceiver r)
+PvsTexelFrame pvsSpotFrameOfSize(float size, PvsSpotMap map, PvsReceiver r)
 {
   PvsTexelFrame f;
-  f.size = float(textureSize(depthMap, 0).x);
+  f.size = size;
   mat4 m = map.lightToClip;
   vec3 x = vec3(m[0][0], m[1][0], m[2][0]);
   vec3 y = vec3(m[0][1], m[1][1], m[2][1]);
@@ -39,6 +39,11 @@ PvsTexelFrame pvsSpotFrame(sampler2DShadow depthMap, PvsSpotMap map, PvsReceiver
   float along = dot(w, r.q);
   f.at = along > 0.0 ? (vec2(dot(x, r.q), dot(y, r.q)) / along * 0.5 + 0.5) * f.size : vec2(-1.0);
   return f;
+}
+
+PvsTexelFrame pvsSpotFrame(sampler2DShadow depthMap, PvsSpotMap map, PvsReceiver r)
+{
+  return pvsSpotFrameOfSize(float(textureSize(depthMap, 0).x), map, r);
 }
 
 vec2 pvsSpotTap(PvsSpotMap map, PvsReceiver r, PvsTexelFrame f, vec2 offset)
@@ -74,6 +79,21 @@ float pvsSpotTexelDepth(sampler2D raw, PvsSpotMap map, PvsReceiver r, PvsTexelFr
   vec2 centre = pvsTexelCentre(t);
   receiverDepth = pvsPlaneDistance(r, pvsSpotTexelDirection(f, centre)) - r.bias;
   return pvsSpotOutside(f, t) ? map.params.x : texture(raw, centre / f.size).r * map.params.x;
+}
+
+// What the translucent casters let through at the texel holding t (transmittance.frag
+// stored the product of their 1 - opacity and, in alpha, the nearest one's depth):
+// the product where the receiver lies beyond the nearest, 1 in front of it.
+float pvsSpotTransmitted(sampler2D transmit, PvsSpotMap map, PvsReceiver r, PvsTexelFrame f, vec2 t)
+{
+  if (pvsSpotOutside(f, t))
+  {
+    return 1.0;
+  }
+  vec2 centre = pvsTexelCentre(t);
+  vec4 stored = texture(transmit, centre / f.size);
+  float depth = pvsPlaneDistance(r, pvsSpotTexelDirection(f, centre)) - r.bias;
+  return depth > stored.a * map.params.x ? stored.r : 1.0;
 }
 
 float pvsSpotSearchRadius(PvsSpotMap map, PvsReceiver r)

@@ -19,16 +19,21 @@ PvsReceiver pvsSunReceiver(PvsSunMap map, mat4 viewToLight, vec3 bias, vec3 posV
 }
 
 // The map's texel grid in light space: x and y across the light.
-PvsTexelFrame pvsSunFrame(sampler2DShadow depthMap, PvsSunMap map, PvsReceiver r)
+PvsTexelFrame pvsSunFrameOfSize(float size, PvsSunMap map, PvsReceiver r)
 {
   PvsTexelFrame f;
-  f.size = float(textureSize(depthMap, 0).x);
+  f.size = size;
   float width = 2.0 * map.params.z;
   f.at = (r.q.xy / width + 0.5) * f.size;
   f.origin = vec3(-map.params.zz, 0.0);
   f.du = vec3(width / f.size, 0.0, 0.0);
   f.dv = vec3(0.0, width / f.size, 0.0);
   return f;
+}
+
+PvsTexelFrame pvsSunFrame(sampler2DShadow depthMap, PvsSunMap map, PvsReceiver r)
+{
+  return pvsSunFrameOfSize(float(textureSize(depthMap, 0).x), map, r);
 }
 
 // A sun map's texels are r.texel wide: taps are offsets on its grid.
@@ -61,6 +66,19 @@ float pvsSunTexelDepth(sampler2D raw, PvsSunMap map, PvsReceiver r, PvsTexelFram
   vec2 centre = pvsTexelCentre(t);
   receiverDepth = pvsSunPlaneDepth(r, f, centre) - r.bias;
   return texture(raw, centre / f.size).r * map.params.x;
+}
+
+// What the translucent casters let through at the texel holding t, as pvsSpotTransmitted.
+float pvsSunTransmitted(sampler2D transmit, PvsSunMap map, PvsReceiver r, PvsTexelFrame f, vec2 t)
+{
+  if (any(lessThan(t, vec2(0.0))) || any(greaterThanEqual(t, vec2(f.size))))
+  {
+    return 1.0;
+  }
+  vec2 centre = pvsTexelCentre(t);
+  vec4 stored = texture(transmit, centre / f.size);
+  float depth = pvsSunPlaneDepth(r, f, centre) - r.bias;
+  return depth > stored.a * map.params.x ? stored.r : 1.0;
 }
 
 float pvsSunSearchRadius(PvsSunMap map, PvsReceiver r)

@@ -23,7 +23,6 @@ from pvshadows.scene.lights import light_kind, light_pose
 from pvshadows.scene.naming import ActorNames
 from pvshadows.scene.planes import require_plane
 from pvshadows.scene.snapshot import SceneReader
-from pvshadows.scene.translucency import transmittance
 from pvshadows.scene.triangles import vtk_id, world_points
 from pvshadows.verify.measure import Measurement, compare
 from pvshadows.verify.probe import read_visibility, require_drawn
@@ -153,7 +152,7 @@ class ShadowsComponent:
         chosen = None
         if lights is not None:
             chosen = {vtk_id(self._check_light(light, "lights")) for light in _light_list(lights)}
-        self._check_scene(warn_translucent=defaults.technique not in ("planar", "volume"))
+        self._check_scene()
         self._warn_unserved(defaults, chosen)
         self._check_volumes(defaults)
         if self._plotter.render_window is not None:
@@ -254,8 +253,10 @@ class ShadowsComponent:
         self._check_light(light, "light")
         return self._per_light.get(vtk_id(light), self._defaults)
 
-    def set_caster(self, actor: vtk.vtkActor, cast: bool = True) -> None:
-        """Choose whether an actor casts shadows (all do by default).
+    def set_caster(
+        self, actor: vtk.vtkActor, cast: bool = True, *, transmittance: float | None = None
+    ) -> None:
+        """Choose whether an actor casts shadows (all do by default), and how much light it passes.
 
         Parameters
         ----------
@@ -263,20 +264,45 @@ class ShadowsComponent:
             The actor.
         cast : bool, default: True
             ``False`` to let light pass through it.
+        transmittance : float, optional
+            Share of the light each of its surfaces lets through, from 0
+            (opaque) to 1 (casts nothing), in place of ``1 - opacity``; every
+            technique and :meth:`reference` use it. ``None`` (the default)
+            goes back to ``1 - opacity``.
+
+        Raises
+        ------
+        TypeError
+            If ``actor`` is not an actor, ``cast`` not a bool or
+            ``transmittance`` not a number.
+        ValueError
+            If ``actor`` is not in this plotter or ``transmittance`` not from 0 to 1.
 
         Notes
         -----
-        :meth:`reference` is physical about a caster's opacity: each of its
-        surfaces a shadow ray crosses lets ``1 - opacity`` of the light
-        through (a closed body twice, as VTK's blending draws both its
-        sides). ``technique="planar"`` does the same, and so does
-        ``"volume"`` (exactly for convex bodies; a ray through several parts
-        of one translucent caster gets what one part lets through). The map
-        techniques draw an actor at ``opacity=0.3`` as the same full shadow
-        as an opaque one, :meth:`enable` warns about it, and :meth:`measure`
-        shows what it costs. Opt such an actor out with ``cast=False`` to let
-        all the light through, or lower the light's ``strength``
-        (:meth:`configure`) to lighten all its shadows.
+        Shadows are physical about a caster's transmittance (``1 - opacity``
+        unless set here): each of its surfaces a shadow ray crosses lets
+        that share of the light through, so a closed body at ``opacity=0.3``
+        passes ``0.7 ** 2 = 0.49`` (its two sides, as VTK's blending draws
+        them). :meth:`reference` traces exactly that. ``technique="planar"``
+        does the same, and so does ``"volume"`` (exactly for convex bodies;
+        a ray through several parts of one translucent caster gets what one
+        part lets through).
+
+        ``"map"`` and ``"cubemap"`` draw the translucent casters of a light
+        into a companion of its depth map, of the same size and projection:
+        per texel, the product of the transmittances of every translucent
+        surface over it and the depth of the nearest one. A receiver beyond
+        that depth gets the product, read once at its own texel (unfiltered,
+        whatever the light's filter), times what the opaque casters let
+        through. The approximation: a receiver between two translucent
+        surfaces (inside a translucent body, or between two translucent
+        casters) gets all of them, not only those in front of it. A light
+        whose casters are all opaque gets no companion and costs nothing
+        more.
+
+        Lower the light's ``strength`` (:meth:`configure`) to lighten all
+        its shadows instead.
 
         Examples
         --------
@@ -284,9 +310,17 @@ class ShadowsComponent:
         >>> import pvshadows
         >>> pl = pv.Plotter(off_screen=True)
         >>> ground = pl.add_mesh(pv.Plane())
+        >>> glass = pl.add_mesh(pv.Sphere(center=(0, 0, 1)), opacity=0.9)
         >>> pl.shadows.set_caster(ground, False)
+        >>> pl.shadows.set_caster(glass, transmittance=0.5)  # lets half through each side
         """
-        self._reader.casting[vtk_id(self._check_actor(actor, cast, "cast"))] = bool(cast)
+        key = vtk_id(self._check_actor(actor, cast, "cast"))
+        through = _check_transmittance(transmittance)
+        self._reader.casting[key] = bool(cast)
+        if through is None:
+            self._reader.transmitting.pop(key, None)
+        else:
+            self._reader.transmitting[key] = through
 
     def set_receiver(
         self, actor: vtk.vtkActor, receive: bool = True, *, plane: bool = False
@@ -616,7 +650,7 @@ class ShadowsComponent:
             )
             warnings.warn(msg, stacklevel=3)
 
-    def _check_scene(self, *, warn_translucent: bool) -> None:
+    def _check_scene(self) -> None:
         for _, light in self._all_lights():
             if light.GetSwitch():
                 light_pose(light)
@@ -627,19 +661,6 @@ class ShadowsComponent:
                 actor = actors.GetNextActor()
                 if actor.GetVisibility() and actor.GetMapper() is not None:
                     self._reader.triangles_of(actor)
-                    if warn_translucent:
-                        self._warn_translucent(actor)
-
-    def _warn_translucent(self, actor: vtk.vtkActor) -> None:
-        opacity = actor.GetProperty().GetOpacity()
-        if opacity < 1.0 and self._reader.casting.get(vtk_id(actor), True):
-            msg = (
-                f"{self._actor_name(actor)} has opacity {opacity:g} but casts a full shadow: "
-                "only technique='planar' or 'volume' lets 1 - opacity through each of its "
-                "surfaces, as reference() does (measure() shows the difference); "
-                "pl.shadows.set_caster(actor, False) lets all the light through it"
-            )
-            warnings.warn(msg, UserWarning, stacklevel=4)
 
     def _check_volumes(self, settings: ShadowSettings) -> None:
         """Ask for a stencil buffer before the first render; check casters for ``on_open="raise"``.
@@ -714,9 +735,7 @@ class ShadowsComponent:
             (width, height),
             pose.key(),
             (float(cast(float, light_size)), int(cast(int, samples))),
-            tuple(
-                (*a.key(), a.caster, a.receiver, transmittance(a.actor)) for a in snapshot.actors
-            ),
+            tuple((*a.key(), a.caster, a.receiver, a.transmittance) for a in snapshot.actors),
         )
         if self._traced is None or self._traced[0] != key:
             require_traceable(
@@ -728,7 +747,7 @@ class ShadowsComponent:
                     a.triangles.triangles.astype(np.int64),
                     caster=a.caster,
                     receiver=a.receiver,
-                    opacity=1.0 - transmittance(a.actor),
+                    opacity=1.0 - a.transmittance,
                 )
                 for a in snapshot.actors
             ]
@@ -781,6 +800,24 @@ def _check_reference_options(light_size: object = 0.0, samples: object = 1) -> N
             "samples > 1 and light_size > 0, hard shadows samples=1 and light_size=0"
         )
         raise ValueError(msg)
+
+
+def _check_transmittance(transmittance: object) -> float | None:
+    if transmittance is None:
+        return None
+    if isinstance(transmittance, bool) or not isinstance(transmittance, Real):
+        msg = (
+            "transmittance must be a number from 0 (opaque) to 1 (casts nothing) or None "
+            f"(1 - opacity), got {transmittance!r}"
+        )
+        raise TypeError(msg)
+    if not 0.0 <= float(transmittance) <= 1.0:
+        msg = (
+            f"transmittance={transmittance} is out of range; it must be from 0 (opaque) "
+            "to 1 (casts nothing)"
+        )
+        raise ValueError(msg)
+    return float(transmittance)
 
 
 def _check_scale(scale: object) -> int:

@@ -136,6 +136,17 @@ def _call_rows():
             (call, {"actor": "actor", flag: NAN}, TypeError, flag),
             (call, {"actor": "actor", flag: None}, TypeError, flag),
         ]
+    for value, error in (
+        ("0.5", TypeError),
+        (True, TypeError),
+        ([0.5], TypeError),
+        (NAN, ValueError),
+        (INF, ValueError),
+        (-0.1, ValueError),
+        (1.5, ValueError),
+    ):
+        given = {"actor": "actor", "transmittance": value}
+        rows.append(("set_caster", given, error, "transmittance"))
     rows += [
         ("set_receiver", {"actor": "actor", "plane": "yes"}, TypeError, "plane"),
         ("set_receiver", {"actor": "actor", "plane": 1}, TypeError, "plane"),
@@ -179,7 +190,7 @@ def test_the_table_covers_every_public_argument():
         "technique", "quality", "lights", "light", "actor", "cast", "receive", "plane",
         "show", "light_size", "samples", "resolution", "filter", "pcf_taps", "filter_radius",
         "passes", "bias", "slope_bias", "normal_offset", "cull_front", "zmode", "extrude",
-        "on_open",
+        "on_open", "transmittance",
     }  # fmt: skip
     assert arguments <= named
     assert len(CALL_ROWS) >= 220

@@ -16,6 +16,7 @@ from pvshadows.tools.scenes import standard_scene
 
 for technique in sys.argv[1:]:
     scene = standard_scene(window_size=(200, 150), light="spot" if technique == "map" else "point")
+    scene.plotter.actors["sphere"].prop.opacity = 0.5  # the maps keep a transmittance companion
     scene.plotter.shadows.enable(technique=technique, filter="hard")
     scene.plotter.screenshot(return_img=True)
     scene.plotter.close()

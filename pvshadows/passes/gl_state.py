@@ -64,3 +64,44 @@ def cull_faces(window: vtk.vtkOpenGLRenderWindow, side: str | None) -> None:
     else:
         state.vtkglEnable(gl.GL_CULL_FACE)
         state.vtkglCullFace(gl.GL_FRONT if side == "front" else gl.GL_BACK)
+
+
+@contextmanager
+def transmittance_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
+    """Set up GL for a transmittance companion, and restore VTK's state afterwards.
+
+    No depth test and no culling (every translucent surface over a texel
+    counts, both sides of a closed body); blending multiplies the colour by
+    the fragment's and keeps the smaller alpha (``glsl/transmittance.frag``);
+    the clear colour is 1 (nothing in the way). Depth clamping, as in
+    :func:`depth_only_state`, keeps casters beyond the map's far plane drawn.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context runs the pass.
+
+    Yields
+    ------
+    module
+        ``OpenGL.GL``, for the pass's own calls.
+    """
+    gl = opengl_for(window)
+    state = window.GetState()
+    state.Push()
+    try:
+        state.vtkglDisable(gl.GL_SCISSOR_TEST)
+        state.vtkglDisable(gl.GL_STENCIL_TEST)
+        state.vtkglDisable(gl.GL_CULL_FACE)
+        state.vtkglDisable(gl.GL_DEPTH_TEST)
+        state.vtkglDepthMask(False)
+        state.vtkglColorMask(True, True, True, True)
+        state.vtkglEnable(gl.GL_BLEND)
+        state.vtkglBlendEquationSeparate(gl.GL_FUNC_ADD, gl.GL_MIN)
+        state.vtkglBlendFuncSeparate(gl.GL_ZERO, gl.GL_SRC_COLOR, gl.GL_ONE, gl.GL_ONE)
+        state.vtkglClearColor(1.0, 1.0, 1.0, 1.0)
+        gl.glEnable(gl.GL_DEPTH_CLAMP)
+        yield gl
+    finally:
+        gl.glDisable(gl.GL_DEPTH_CLAMP)
+        state.Pop()

@@ -19,6 +19,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
+from pvshadows.scene.translucency import transmittance
 from pvshadows.scene.triangles import (
     ActorTriangles,
     actor_matrix,
@@ -49,6 +50,10 @@ class ActorState:
     plane : bool
         Named the receiving plane of planar shadows
         (``pl.shadows.set_receiver(actor, plane=True)``).
+    transmittance : float
+        Share of light each of its surfaces lets through as a caster:
+        ``1 - opacity``, or what ``pl.shadows.set_caster(actor,
+        transmittance=...)`` set.
     """
 
     actor: vtk.vtkActor
@@ -59,6 +64,7 @@ class ActorState:
     caster: bool
     receiver: bool
     plane: bool = False
+    transmittance: float = 0.0
 
     def model_matrix(self) -> np.ndarray:
         """Return the model-to-world matrix of :attr:`triangles`' centred points (float64)."""
@@ -131,6 +137,8 @@ class SceneReader:
         self._versions = 0
         self._frames: dict[str, _RendererCache] = {}
         self.casting: dict[str, bool] = {}
+        #: Transmittances set in place of ``1 - opacity``, by actor key.
+        self.transmitting: dict[str, float] = {}
         self.receiving: dict[str, bool] = {}
         #: Actors named receiving planes of planar shadows.
         self.planes: set[str] = set()
@@ -247,6 +255,7 @@ class SceneReader:
             # A follower turns to face the camera: its matrix changes with the camera's.
             camera if entry.follower else 0,
             self.casting.get(key, True),
+            self.transmitting.get(key),
             self.receiving.get(key, True),
             key in self.planes,
         )
@@ -284,6 +293,7 @@ class SceneReader:
             caster,
             receiver,
             receiver and key in self.planes,
+            self.transmitting.get(key, transmittance(actor)),
         )
         return state, not receiver
 

@@ -36,6 +36,9 @@ KINDS = {
         "PVS_TEXEL_DEPTH": "pvsCubeTexelDepth",
         "PVS_SEARCH_RADIUS": "pvsCubeSearchRadius",
         "PVS_PENUMBRA_RADIUS": "pvsCubePenumbraRadius",
+        "PVS_TRANSMIT_MAP": "samplerCube",
+        "PVS_FRAME_OF_SIZE": "pvsCubeFrameOfSize",
+        "PVS_TEXEL_TRANSMITTED": "pvsCubeTransmitted",
     },
     "spot": {
         "file": "shadow_spot.glsl",
@@ -48,6 +51,9 @@ KINDS = {
         "PVS_TEXEL_DEPTH": "pvsSpotTexelDepth",
         "PVS_SEARCH_RADIUS": "pvsSpotSearchRadius",
         "PVS_PENUMBRA_RADIUS": "pvsSpotPenumbraRadius",
+        "PVS_TRANSMIT_MAP": "sampler2D",
+        "PVS_FRAME_OF_SIZE": "pvsSpotFrameOfSize",
+        "PVS_TEXEL_TRANSMITTED": "pvsSpotTransmitted",
     },
     "sun": {
         "file": "shadow_sun.glsl",
@@ -60,6 +66,9 @@ KINDS = {
         "PVS_TEXEL_DEPTH": "pvsSunTexelDepth",
         "PVS_SEARCH_RADIUS": "pvsSunSearchRadius",
         "PVS_PENUMBRA_RADIUS": "pvsSunPenumbraRadius",
+        "PVS_TRANSMIT_MAP": "sampler2D",
+        "PVS_FRAME_OF_SIZE": "pvsSunFrameOfSize",
+        "PVS_TEXEL_TRANSMITTED": "pvsSunTransmitted",
     },
 }
 #: The filters of ``shadow_filters.glsl``; "lit" (no map: only the facing and cone
@@ -74,13 +83,16 @@ GROUP_SAMPLERS = {
     "random": ("Depth", "Offsets"),
     "pcss": ("Depth", "Raw", "Offsets"),
 }
+#: The sampler array a group of lights with translucent casters reads besides its
+#: filter's: each light's transmittance companion.
+TRANSMIT_SAMPLER = "Transmit"
 
 
 @dataclass(frozen=True)
 class MapLookup:
     """One light's read of its shadow map, looked up with the other lights of its group.
 
-    The light's own uniforms (``pvsDepth{i}``, ``pvsParams{i}``,
+    The light's own uniforms (``pvsDepth{i}``, ``pvsTransmit{i}``, ``pvsParams{i}``,
     ``pvsViewToLight{i}``, ``pvsBias{i}``, ``pvsCone{i}``,
     ``pvsLightToClip{i}``, ``pvsOffsets{i}``, ``pvsRaw{i}``,
     ``pvsFilterRadius{i}``) are packed into the group's arrays by
@@ -98,17 +110,30 @@ class MapLookup:
     taps : int
         PCF's grid side, or the samples of the random and PCSS filters (0
         for the others).
+    translucent : bool
+        The light's casters include translucent ones: the filter's result
+        is multiplied by what they let through, read from the light's
+        transmittance companion (``pvsTransmit{i}``).
     """
 
     kind: str
     filter: str
     vtk_index: int
     taps: int = 0
+    translucent: bool = False
 
     @property
     def group(self) -> str:
-        """Name of the light's group, for example ``"CubePcf"``."""
-        return filter_function(self.kind, self.filter)[3:]
+        """Name of the light's group, for example ``"CubePcf"`` or ``"SpotHardTranslucent"``."""
+        return filter_function(self.kind, self.filter)[3:] + (
+            "Translucent" if self.translucent else ""
+        )
+
+    @property
+    def samplers(self) -> tuple[str, ...]:
+        """The parts of the sampler arrays the light's group reads, for example ``("Depth",)``."""
+        own = GROUP_SAMPLERS[self.filter]
+        return (*own, TRANSMIT_SAMPLER) if self.translucent else own
 
     @property
     def visibility_name(self) -> str:
@@ -169,6 +194,9 @@ def _group_instance(group: str, lookups: list[MapLookup]) -> str:
         "PVS_GROUP_RAW": f"{uniform}Raw",
         "PVS_GROUP_OFFSETS": f"{uniform}Offsets",
     }
+    if first.translucent:
+        names["PVS_GROUP_TRANSLUCENT"] = ""
+        names["PVS_GROUP_TRANSMIT"] = f"{uniform}{TRANSMIT_SAMPLER}"
     each = " ".join(f"EACH({j}, {lookup.visibility_name})" for j, lookup in enumerate(lookups))
     names["PVS_GROUP_ALL(EACH)"] = each
     defines, undefines = _defines(names)
@@ -182,6 +210,9 @@ def _kind_instance(kind: str, groups: dict[str, list[MapLookup]]) -> str:
     names.update({f"PVS_{f.upper()}": filter_function(kind, f) for f in FILTERS})
     names.update({f"PVS_WITH_{f.upper()}": "" for f in filters})
     names["PVS_BOX"] = filter_function(kind, "box")
+    names["PVS_TRANSMIT"] = filter_function(kind, "transmit")
+    if any(lookups[0].translucent for lookups in groups.values()):
+        names["PVS_WITH_TRANSMIT"] = ""
     defines, undefines = _defines(names)
     code = [defines, glsl_source("shadow_filters.glsl")]
     code.extend(_group_instance(group, lookups) for group, lookups in groups.items())
@@ -253,16 +284,20 @@ def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int]]:
     >>> from pvshadows.shaders.library import MapLookup, group_samplers
     >>> group_samplers([MapLookup("sun", "pcss", 1, 16)])["pvsSunPcssRaw"]
     ('sampler2D', 1)
+    >>> group_samplers([MapLookup("cube", "hard", 0, 2, translucent=True)])
+    {'pvsCubeHardTranslucentDepth': ('samplerCubeShadow', 1), \
+'pvsCubeHardTranslucentTransmit': ('samplerCube', 1)}
     """
     samplers = {}
     for group, members in _groups(lookups).items():
-        kind, filter_name = members[0].kind, members[0].filter
+        kind = members[0].kind
         types = {
             "Depth": KINDS[kind]["PVS_COMPARE_MAP"],
             "Raw": KINDS[kind]["PVS_RAW_MAP"],
             "Offsets": "sampler3D",
+            TRANSMIT_SAMPLER: KINDS[kind]["PVS_TRANSMIT_MAP"],
         }
-        for part in GROUP_SAMPLERS[filter_name]:
+        for part in members[0].samplers:
             samplers[f"pvs{group}{part}"] = (types[part], len(members))
     return samplers
 
@@ -270,6 +305,7 @@ def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int]]:
 #: Prefixes of each light's own uniforms, which :func:`group_uniforms` packs.
 OWN_UNIFORMS = (
     "pvsDepth",
+    "pvsTransmit",
     "pvsRaw",
     "pvsOffsets",
     "pvsParams",
@@ -335,7 +371,7 @@ def group_uniforms(
         packed[f"{name}Pack"] = np.stack([_pack(uniforms, m) for m in members])
         if members[0].kind == "spot":
             packed[f"{name}LightToClip"] = _matrices(uniforms, "pvsLightToClip", members)
-        for part in GROUP_SAMPLERS[members[0].filter]:
+        for part in members[0].samplers:
             packed[f"{name}{part}"] = [
                 int(cast(int, uniforms[f"pvs{part}{m.vtk_index}"])) for m in members
             ]

@@ -1,4 +1,9 @@
-"""Point-light shadows from a depth cube map: distance to the light over ``far``, six faces."""
+"""Point-light shadows from a depth cube map: distance to the light over ``far``, six faces.
+
+The cube holds the opaque casters; translucent ones go to its transmittance
+companion (:mod:`pvshadows.techniques.translucent`), made only for a light that
+has some, and drawn by the same route (one layered draw, or one per face).
+"""
 
 from __future__ import annotations
 
@@ -10,15 +15,23 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
 from pvshadows.gl.textures import DepthCube
+from pvshadows.gl.transmittance_textures import TransmittanceCube, TransmittanceTexture
 from pvshadows.model.plan import LightPlan
 from pvshadows.model.report import PassReport
 from pvshadows.passes.cube_depth import CubeCaster, CubeDepthPass, caster_face_mask
+from pvshadows.passes.transmittance import TranslucentCaster
 from pvshadows.scene.lights import LightKind
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
+from pvshadows.techniques.translucent import (
+    Companion,
+    Companions,
+    split_casters,
+    translucent_key,
+)
 
 
 @dataclass
@@ -30,10 +43,19 @@ class CubeState:
     far: float = 1.0
     nearest: float = 0.0
     frame: int = -1
+    drawn: bool = False
+    companion: Companion | None = None
 
     def release(self) -> None:
-        """Release the cube."""
+        """Release the cube and its companion."""
         self.cube.release()
+        self.drop_companion()
+
+    def drop_companion(self) -> None:
+        """Release the transmittance companion, if any."""
+        if self.companion is not None:
+            self.companion.release()
+            self.companion = None
 
 
 def distance_range(position: np.ndarray, casters: list) -> tuple[float, float]:
@@ -86,6 +108,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         super().__init__(window)
         self._pass = CubeDepthPass(window)
+        self._companions = Companions(window)
 
     def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
         """Bring the light's cube up to date for this frame.
@@ -111,36 +134,79 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             state = CubeState(DepthCube(self._window, settings.resolution))
             self._states[vtk_id(plan.light)] = state
         position = plan.pose.position
+        state.nearest, state.far = distance_range(position, plan.casters)
+        opaque, translucent = split_casters(plan.casters)
+        companion = self._update_companion(plan, context, state, translucent)
+        state.drawn = bool(opaque)
+        if not opaque:
+            state.key = None
+            return [PassReport("cube depth", "skipped", "every caster is translucent"), *companion]
         key = (
             plan.pose.key(),
             settings.resolution,
             settings.passes,
             settings.cull_front,
-            tuple(c.key() for c in plan.casters),
+            state.far,
+            tuple(c.key() for c in opaque),
         )
         if key == state.key:
-            return [
-                PassReport(
-                    "cube depth",
-                    "reused",
-                    f"light and casters unchanged since frame {state.frame}: map still right",
-                )
-            ]
-        casters = []
-        for caster in plan.casters:
-            casters.append(
-                CubeCaster(
-                    context.buffers.get(caster),
-                    translation(-position) @ caster.model_matrix(),
-                    caster_face_mask(caster.bounds - position),
-                    face_to_cull(caster, settings),
-                )
+            reused = f"light and casters unchanged since frame {state.frame}: map still right"
+            return [PassReport("cube depth", "reused", reused), *companion]
+        casters = [
+            CubeCaster(
+                context.buffers.get(caster),
+                translation(-position) @ caster.model_matrix(),
+                caster_face_mask(caster.bounds - position),
+                face_to_cull(caster, settings),
             )
-        state.nearest, state.far = distance_range(position, plan.casters)
+            for caster in opaque
+        ]
         assert self._pass is not None
         reports = self._pass.render(state.cube, casters, state.far, settings.passes, context.timer)
         state.key, state.frame = key, context.frame
+        return reports + companion
+
+    def _update_companion(
+        self, plan: LightPlan, context: FrameContext, state: CubeState, translucent: list
+    ) -> list[PassReport]:
+        """Draw the light's translucent casters into its companion, or drop it when none."""
+        settings, pose = plan.settings, plan.pose
+        assert settings is not None and pose is not None
+        if not translucent:
+            state.drop_companion()
+            return []
+        position, far = pose.position, state.far
+
+        def draw(target: TransmittanceTexture) -> list[PassReport]:
+            assert isinstance(target, TransmittanceCube)
+            drawn = [
+                TranslucentCaster(
+                    context.buffers.get(caster),
+                    translation(-position) @ caster.model_matrix(),
+                    caster.transmittance,
+                    caster_face_mask(caster.bounds - position),
+                )
+                for caster in translucent
+            ]
+            return self._companions.drawer.render_cube(
+                target, drawn, far, settings.passes, context.timer
+            )
+
+        key = (pose.key(), settings.resolution, settings.passes, far)
+        state.companion, reports = self._companions.update(
+            state.companion,
+            resolution=settings.resolution,
+            cube=True,
+            key=(*key, translucent_key(translucent)),
+            frame=context.frame,
+            draw=draw,
+        )
         return reports
+
+    def release(self) -> None:
+        """Release every cube and companion, and the passes' programs."""
+        super().release()
+        self._companions.release()
 
     def shading(self, plan: LightPlan) -> LightShading:
         """Return how receivers read this light's cube.
@@ -153,10 +219,18 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         Returns
         -------
         LightShading
-            The lookup call with the light's filter, and its samplers.
+            The lookup call with the light's filter, and its samplers; one
+            with translucent casters multiplies in what they let through.
         """
+        state = self._states[vtk_id(plan.light)]
         assert plan.settings is not None
-        return lookup_shading("cube", plan.vtk_index, plan.settings)
+        return lookup_shading(
+            "cube",
+            plan.vtk_index,
+            plan.settings,
+            has_map=state.drawn,
+            translucent=state.companion is not None,
+        )
 
     def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
         """Bind the light's cube and filter textures and return the receivers' uniforms.
@@ -180,7 +254,9 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         i = plan.vtk_index
         spot = pose.kind is LightKind.SPOT
         cone = np.cos(np.radians(pose.cone_angle)) if spot else -2.0
-        uniforms = self._filters.activate(i, settings, state.cube)
+        uniforms = self._filters.activate(i, settings, state.cube if state.drawn else None)
+        if state.companion is not None:
+            uniforms.update(self._filters.activate_transmittance(i, state.companion.texture))
         uniforms.update(
             {
                 f"pvsViewToLight{i}": translation(-pose.position) @ context.view.view_to_world,

@@ -11,6 +11,7 @@ from __future__ import annotations
 from pvshadows import _vtk as vtk
 from pvshadows.gl.sampling import DiskOffsets, RawDepthView
 from pvshadows.gl.textures import DepthTexture
+from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.shaders.library import MapLookup
 from pvshadows.shaders.shading import LightShading
@@ -24,7 +25,12 @@ PCSS_SEARCH = 16
 
 
 def lookup_shading(
-    kind: str, vtk_index: int, settings: ShadowSettings, *, has_map: bool = True
+    kind: str,
+    vtk_index: int,
+    settings: ShadowSettings,
+    *,
+    has_map: bool = True,
+    translucent: bool = False,
 ) -> LightShading:
     """Return how receivers read one light's map of a kind with its filter.
 
@@ -39,6 +45,10 @@ def lookup_shading(
     has_map : bool, default: True
         ``False`` when the map had nothing to draw: the lookup is then only
         the facing and cone test.
+    translucent : bool, default: False
+        ``True`` when the light's translucent casters were drawn into a
+        transmittance companion (``pvsTransmit{i}``): the lookup multiplies
+        the filter's result by what they let through.
 
     Returns
     -------
@@ -56,13 +66,13 @@ def lookup_shading(
     ('pvsMapVisibility2', 'SunPcf', 2)
     """
     if not has_map:
-        lookup = MapLookup(kind, "lit", vtk_index)
+        lookup = MapLookup(kind, "lit", vtk_index, translucent=translucent)
     elif settings.filter == "pcf":
-        lookup = MapLookup(kind, "pcf", vtk_index, PCF_GRID[settings.pcf_taps])
+        lookup = MapLookup(kind, "pcf", vtk_index, PCF_GRID[settings.pcf_taps], translucent)
     elif settings.filter in ("random", "pcss"):
-        lookup = MapLookup(kind, settings.filter, vtk_index, settings.samples)
+        lookup = MapLookup(kind, settings.filter, vtk_index, settings.samples, translucent)
     else:
-        lookup = MapLookup(kind, "hard", vtk_index, HARD_BOX)
+        lookup = MapLookup(kind, "hard", vtk_index, HARD_BOX, translucent)
     return LightShading(vtk_index, lookup.visibility_name, needs=(lookup,))
 
 
@@ -129,6 +139,23 @@ class FilterBindings:
                 self._raw = RawDepthView(self._window)
             uniforms[f"pvsRaw{i}"] = self._raw.bind(depth)
         return uniforms
+
+    def activate_transmittance(self, vtk_index: int, companion: TransmittanceTexture) -> dict:
+        """Bind one light's transmittance companion; return its sampler uniform.
+
+        Parameters
+        ----------
+        vtk_index : int
+            The light's index among VTK's switched-on lights.
+        companion : TransmittanceTexture
+            The companion of its map.
+
+        Returns
+        -------
+        dict
+            ``{"pvsTransmit{i}": unit}``.
+        """
+        return {f"pvsTransmit{vtk_index}": self._activate(companion.texture)}
 
     def deactivate(self) -> None:
         """Free every unit bound this frame."""

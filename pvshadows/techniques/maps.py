@@ -4,7 +4,9 @@ A spot light's map is a perspective view holding its cone and storing the
 distance to the light; a directional light's map is an orthographic view
 fitted to the casters that can shadow what the camera sees, storing depth
 along the light. Either is rendered again only when its light, its casters
-or (directional) its fitted coverage changed.
+or (directional) its fitted coverage changed. The map holds the opaque
+casters; translucent ones go to its transmittance companion
+(:mod:`pvshadows.techniques.translucent`), made only for a light that has some.
 """
 
 from __future__ import annotations
@@ -16,10 +18,12 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
 from pvshadows.gl.textures import DepthMap
+from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import LightPlan
 from pvshadows.model.report import PassReport
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.passes.map_depth import MapCaster, MapDepthPass
+from pvshadows.passes.transmittance import TranslucentCaster
 from pvshadows.scene.fitting import SunFit, spot_fit, spot_shadowing_casters, sun_fit, sun_rotation
 from pvshadows.scene.lights import LightKind
 from pvshadows.scene.triangles import vtk_id
@@ -28,6 +32,12 @@ from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
 from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
+from pvshadows.techniques.translucent import (
+    Companion,
+    Companions,
+    split_casters,
+    translucent_key,
+)
 
 
 @dataclass
@@ -49,10 +59,18 @@ class MapState:
     fit_key: tuple | None = None
     fitted: SunFit | None = None
     casters_of: tuple | None = None
+    companion: Companion | None = None
 
     def release(self) -> None:
-        """Release the map."""
+        """Release the map and its companion."""
         self.depth.release()
+        self.drop_companion()
+
+    def drop_companion(self) -> None:
+        """Release the transmittance companion, if any."""
+        if self.companion is not None:
+            self.companion.release()
+            self.companion = None
 
 
 def _kind(plan: LightPlan) -> str:
@@ -74,6 +92,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         super().__init__(window)
         self._pass = MapDepthPass(window)
+        self._companions = Companions(window)
 
     def _state(self, plan: LightPlan) -> MapState:
         assert plan.settings is not None
@@ -132,8 +151,11 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         state.drawn = bool(inside)
         if not inside:
             state.key = None
+            state.drop_companion()
             return [PassReport("map depth", "skipped", "no caster inside the spot's cone")]
-        key = (pose.key(), settings.resolution, settings.cull_front, state.texel, keys)
+        assert state.light_to_clip is not None
+        projection = (state.light_to_clip.tobytes(), far)
+        key = (pose.key(), settings.resolution, settings.cull_front, projection)
         detail = f"{len(inside)} of {len(context.snapshot.casters)} casters inside the cone"
         return self._render(
             state, key, inside, context, far, along_z=False, detail=detail, settings=settings
@@ -156,6 +178,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         state.drawn = fit is not None
         if fit is None:
             state.key = None
+            state.drop_companion()
             state.world_to_light = sun_rotation(pose)
             state.params = (1.0, 1.0, 1.0, 0.0)
             return [PassReport("map depth", "skipped", "no caster can shadow a visible receiver")]
@@ -170,13 +193,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         state.light_to_clip = np.diag([1.0 / fit.half_width, 1.0 / fit.half_width, 0.0, 1.0])
         tangent = np.tan(np.radians(settings.light_size))
         state.params = (fit.depth, fit.texel, fit.half_width, tangent)
-        key = (
-            pose.key(),
-            settings.resolution,
-            settings.cull_front,
-            fit.key(),
-            tuple(c.key() for c in drawn),
-        )
+        key = (pose.key(), settings.resolution, settings.cull_front, fit.key())
         detail = (
             f"fitted {2 * fit.half_width:.4g} wide to {len(drawn)} of "
             f"{len(plan.casters)} casters ({fit.texel:.3g} per texel)"
@@ -197,14 +214,18 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         detail: str,
         settings: ShadowSettings,
     ) -> list[PassReport]:
+        opaque, translucent = split_casters(casters)
+        companion = self._render_companion(
+            state, key, translucent, context, depth_range, along_z=along_z, settings=settings
+        )
+        state.drawn = bool(opaque)
+        if not opaque:
+            state.key = None
+            return [PassReport("map depth", "skipped", "every caster is translucent"), *companion]
+        key = (*key, tuple(c.key() for c in opaque))
         if key == state.key:
-            return [
-                PassReport(
-                    "map depth",
-                    "reused",
-                    f"light, casters and coverage unchanged since frame {state.frame}",
-                )
-            ]
+            reused = f"light, casters and coverage unchanged since frame {state.frame}"
+            return [PassReport("map depth", "reused", reused), *companion]
         assert self._pass is not None and state.light_to_clip is not None
         drawn = [
             MapCaster(
@@ -212,7 +233,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
                 state.world_to_light @ caster.model_matrix(),
                 face_to_cull(caster, settings),
             )
-            for caster in casters
+            for caster in opaque
         ]
         reports = self._pass.render(
             state.depth,
@@ -224,7 +245,53 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             detail=detail,
         )
         state.key, state.frame = key, context.frame
+        return reports + companion
+
+    def _render_companion(
+        self,
+        state: MapState,
+        key: tuple,
+        translucent: list,
+        context: FrameContext,
+        depth_range: float,
+        *,
+        along_z: bool,
+        settings: ShadowSettings,
+    ) -> list[PassReport]:
+        """Draw the light's translucent casters into its companion, or drop it when none."""
+        if not translucent:
+            state.drop_companion()
+            return []
+        assert state.light_to_clip is not None and state.world_to_light is not None
+        light_to_clip, world_to_light = state.light_to_clip, state.world_to_light
+
+        def draw(target: TransmittanceTexture) -> list[PassReport]:
+            drawn = [
+                TranslucentCaster(
+                    context.buffers.get(caster),
+                    world_to_light @ caster.model_matrix(),
+                    caster.transmittance,
+                )
+                for caster in translucent
+            ]
+            return self._companions.drawer.render_map(
+                target, drawn, light_to_clip, depth_range, along_z=along_z, timer=context.timer
+            )
+
+        state.companion, reports = self._companions.update(
+            state.companion,
+            resolution=settings.resolution,
+            cube=False,
+            key=(*key, translucent_key(translucent)),
+            frame=context.frame,
+            draw=draw,
+        )
         return reports
+
+    def release(self) -> None:
+        """Release every map and companion, and the passes' programs."""
+        super().release()
+        self._companions.release()
 
     def shading(self, plan: LightPlan) -> LightShading:
         """Return how receivers read this light's map.
@@ -238,11 +305,18 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         -------
         LightShading
             The lookup call with the light's filter, and its samplers; a light
-            whose map was skipped (nothing to shadow) shows no shadow.
+            whose map was skipped (nothing to shadow) shows no shadow, and
+            one with translucent casters multiplies in what they let through.
         """
-        drawn = self._states[vtk_id(plan.light)].drawn
+        state = self._states[vtk_id(plan.light)]
         assert plan.settings is not None
-        return lookup_shading(_kind(plan), plan.vtk_index, plan.settings, has_map=drawn)
+        return lookup_shading(
+            _kind(plan),
+            plan.vtk_index,
+            plan.settings,
+            has_map=state.drawn,
+            translucent=state.companion is not None,
+        )
 
     def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
         """Bind the light's map and filter textures and return the receivers' uniforms.
@@ -263,6 +337,8 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         i = plan.vtk_index
         assert plan.settings is not None and plan.pose is not None
         uniforms = self._filters.activate(i, plan.settings, state.depth if state.drawn else None)
+        if state.companion is not None:
+            uniforms.update(self._filters.activate_transmittance(i, state.companion.texture))
         uniforms[f"pvsViewToLight{i}"] = state.world_to_light @ context.view.view_to_world
         uniforms[f"pvsParams{i}"] = state.params
         if _kind(plan) == "spot":

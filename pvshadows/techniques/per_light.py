@@ -7,15 +7,20 @@ from typing import ClassVar, Generic, Protocol, TypeVar
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import LightPlan
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.snapshot import ActorState
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.techniques.filtering import FilterBindings
+from pvshadows.techniques.translucent import Companion
 
 
 class LightState(Protocol):
     """What a technique keeps for one light between frames."""
+
+    #: The transmittance companion of its map, when some of its casters are translucent.
+    companion: Companion | None
 
     def release(self) -> None:
         """Release the light's GPU resources."""
@@ -72,6 +77,11 @@ class PerLightMaps(Generic[StateT, PassT]):
         self._filters = FilterBindings(window)
         self._states: dict[str, StateT] = {}
         self._pass: PassT | None = None
+
+    def companion_of(self, light: vtk.vtkLight) -> TransmittanceTexture | None:
+        """Return the transmittance companion kept for a light, if any (for tests and debugging)."""
+        state = self._states.get(vtk_id(light))
+        return state.companion.texture if state is not None and state.companion else None
 
     def deactivate(self) -> None:
         """Free the texture units bound by ``activate``."""

@@ -42,7 +42,6 @@ from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
 from pvshadows.scene.lights import LightKind
 from pvshadows.scene.planes import PlaneChoice, choose_plane, facing, flattening
 from pvshadows.scene.snapshot import ActorState
-from pvshadows.scene.translucency import transmittance
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
@@ -210,7 +209,7 @@ def flat_draws(
                 projection,
                 view,
             ),
-            transmittance(caster.actor),
+            caster.transmittance,
         )
         for caster in casters
     ]
@@ -318,7 +317,7 @@ class PlanarTechnique:
                 camera.GetProjectionTransformMatrix(context.renderer.GetTiledAspectRatio(), -1, 1)
             ).tobytes(),
             state.mask.size,
-            tuple((*c.key(), transmittance(c.actor)) for c in casters),
+            tuple((*c.key(), c.transmittance) for c in casters),
         )
         if key == state.key:
             return [

@@ -61,7 +61,6 @@ from pvshadows.pipeline.volume_zmode import choose_zmode
 from pvshadows.scene.lights import LightKind
 from pvshadows.scene.render_target import tiled_viewport
 from pvshadows.scene.snapshot import ActorState, Snapshot
-from pvshadows.scene.translucency import transmittance
 from pvshadows.scene.triangles import ActorTriangles, vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, Technique
@@ -178,16 +177,14 @@ def translucent_batches(
     Examples
     --------
     >>> from types import SimpleNamespace
-    >>> import pyvista as pv
     >>> from pvshadows.techniques.volume import translucent_batches
-    >>> pl = pv.Plotter(off_screen=True)
-    >>> glass = SimpleNamespace(actor=pl.add_mesh(pv.Sphere(), opacity=0.5))
-    >>> stone = SimpleNamespace(actor=pl.add_mesh(pv.Cube()))
+    >>> glass = SimpleNamespace(transmittance=0.5)
+    >>> stone = SimpleNamespace(transmittance=0.0)
     >>> body = SimpleNamespace(n_bodies=1, how="closed")
     >>> translucent_batches([(glass, body), (stone, body)])
     ([[(1, 0, 1)], [(0, 0, 1)]], [0.0, 0.25])
     """
-    through = [transmittance(caster.actor) for caster, _ in closed]
+    through = [caster.transmittance for caster, _ in closed]
     counts = [mesh.n_bodies for _, mesh in closed]
     result = batches([c if t == 0.0 else 0 for c, t in zip(counts, through, strict=True)])
     passing = [0.0] * len(result)
@@ -414,7 +411,7 @@ class VolumeTechnique:
             camera.tobytes(),
             (width, height),
             tuple(c.key() for c in context.snapshot.actors),
-            tuple((*c.key(), transmittance(c.actor)) for c, _ in closed),
+            tuple((*c.key(), c.transmittance) for c, _ in closed),
         )
         if key == state.key:
             reports.append(
