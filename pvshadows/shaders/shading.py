@@ -372,7 +372,7 @@ def uniform_setter(name: str, value: object) -> Callable[[vtk.vtkUniforms], None
         return lambda uniforms: uniforms.SetUniformMatrix4x4(name, matrix)
     if array.ndim == 3 and array.shape[1:] == (4, 4):
         matrices = column_major(array).tolist()
-        return lambda uniforms: uniforms.SetUniformMatrix4x4v(name, len(matrices), matrices)
+        return lambda uniforms: uniforms.SetUniformMatrix4x4v(name, array.shape[0], matrices)
     if array.shape == (4,):
         vector = array.astype(np.float32).tolist()
         return lambda uniforms: uniforms.SetUniform4f(name, vector)
