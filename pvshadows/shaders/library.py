@@ -23,7 +23,9 @@ import numpy as np
 
 from pvshadows.gl.programs import glsl_source
 
-#: Kinds of depth map and the GLSL names the filter file uses for each.
+#: Kinds of depth map and the GLSL names the filter file uses for each. "cubes"
+#: are the cubes of several lights as layers of one cube map array, looked up in
+#: one loop (:data:`LOOPED`).
 KINDS = {
     "cube": {
         "file": "shadow_cube.glsl",
@@ -36,6 +38,18 @@ KINDS = {
         "PVS_TEXEL_DEPTH": "pvsCubeTexelDepth",
         "PVS_SEARCH_RADIUS": "pvsCubeSearchRadius",
         "PVS_PENUMBRA_RADIUS": "pvsCubePenumbraRadius",
+    },
+    "cubes": {
+        "file": "shadow_cube_array.glsl",
+        "PVS_MAP": "PvsCubesMap",
+        "PVS_COMPARE_MAP": "samplerCubeArrayShadow",
+        "PVS_RAW_MAP": "samplerCubeArray",
+        "PVS_FRAME": "pvsCubesFrame",
+        "PVS_TAP": "pvsCubesTap",
+        "PVS_TEXEL": "pvsCubesTexel",
+        "PVS_TEXEL_DEPTH": "pvsCubesTexelDepth",
+        "PVS_SEARCH_RADIUS": "pvsCubesSearchRadius",
+        "PVS_PENUMBRA_RADIUS": "pvsCubesPenumbraRadius",
     },
     "spot": {
         "file": "shadow_spot.glsl",
@@ -62,6 +76,11 @@ KINDS = {
         "PVS_PENUMBRA_RADIUS": "pvsSunPenumbraRadius",
     },
 }
+#: Kinds whose lights are layers of one texture, looked up in one loop with one
+#: sampler per group, and the files each needs before its own.
+LOOPED = {"cubes": ("shadow_cube.glsl",)}
+#: The GLSL extension a looped kind needs in a GLSL 1.50 shader.
+EXTENSIONS = {"cubes": "GL_ARB_texture_cube_map_array"}
 #: The filters of ``shadow_filters.glsl``; "lit" (no map: only the facing and cone
 #: test) serves lights whose map had nothing to draw.
 FILTERS = ("lit", "hard", "pcf", "random", "pcss")
@@ -98,17 +117,22 @@ class MapLookup:
     taps : int
         PCF's grid side, or the samples of the random and PCSS filters (0
         for the others).
+    texture : str
+        For a looped kind, which texture holds the light's map (the lights of
+        a group share it), for example ``"1024"`` for the cube array of
+        1024-texel cubes; its layer is the uniform ``pvsLayer{i}``.
     """
 
     kind: str
     filter: str
     vtk_index: int
     taps: int = 0
+    texture: str = ""
 
     @property
     def group(self) -> str:
-        """Name of the light's group, for example ``"CubePcf"``."""
-        return filter_function(self.kind, self.filter)[3:]
+        """Name of the light's group, for example ``"CubePcf"`` or ``"CubesPcf1024"``."""
+        return filter_function(self.kind, self.filter)[3:] + self.texture
 
     @property
     def visibility_name(self) -> str:
@@ -169,6 +193,9 @@ def _group_instance(group: str, lookups: list[MapLookup]) -> str:
         "PVS_GROUP_RAW": f"{uniform}Raw",
         "PVS_GROUP_OFFSETS": f"{uniform}Offsets",
     }
+    if first.kind in LOOPED:
+        names["PVS_GROUP_LOOP"] = ""
+        names["PVS_GROUP_COUNT"] = f"{uniform}Count"
     each = " ".join(f"EACH({j}, {lookup.visibility_name})" for j, lookup in enumerate(lookups))
     names["PVS_GROUP_ALL(EACH)"] = each
     defines, undefines = _defines(names)
@@ -227,10 +254,11 @@ def shadow_functions(lookups: Iterable[MapLookup]) -> str:
     by_kind: dict[str, dict[str, list[MapLookup]]] = {}
     for group, members in groups.items():
         by_kind.setdefault(members[0].kind, {})[group] = members
-    code = [glsl_source("shadow_common.glsl")]
-    for kind, kind_groups in by_kind.items():
-        code.append(glsl_source(KINDS[kind]["file"]))
-        code.append(_kind_instance(kind, kind_groups))
+    files = [glsl_source("shadow_common.glsl")]
+    for kind in by_kind:
+        files.extend(glsl_source(name) for name in (*LOOPED.get(kind, ()), KINDS[kind]["file"]))
+    code = list(dict.fromkeys(files))
+    code.extend(_kind_instance(kind, kind_groups) for kind, kind_groups in by_kind.items())
     code.append(_gather(lookup for members in groups.values() for lookup in members))
     return "\n".join(code)
 
@@ -262,9 +290,32 @@ def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int]]:
             "Raw": KINDS[kind]["PVS_RAW_MAP"],
             "Offsets": "sampler3D",
         }
+        length = None if kind in LOOPED else len(members)
         for part in GROUP_SAMPLERS[filter_name]:
-            samplers[f"pvs{group}{part}"] = (types[part], len(members))
+            samplers[f"pvs{group}{part}"] = (types[part], length)
     return samplers
+
+
+def extensions(lookups: Iterable[MapLookup]) -> list[str]:
+    """Return the GLSL extensions the lookups need in a GLSL 1.50 shader.
+
+    Parameters
+    ----------
+    lookups : iterable of MapLookup
+        The map lookups of a receiver's lights.
+
+    Returns
+    -------
+    list of str
+        For example ``["GL_ARB_texture_cube_map_array"]`` for cube arrays.
+
+    Examples
+    --------
+    >>> from pvshadows.shaders.library import MapLookup, extensions
+    >>> extensions([MapLookup("cubes", "pcf", 0, 2, "1024"), MapLookup("sun", "hard", 1)])
+    ['GL_ARB_texture_cube_map_array']
+    """
+    return list(dict.fromkeys(EXTENSIONS[m.kind] for m in lookups if m.kind in EXTENSIONS))
 
 
 #: Prefixes of each light's own uniforms, which :func:`group_uniforms` packs.
@@ -278,6 +329,7 @@ OWN_UNIFORMS = (
     "pvsFilterRadius",
     "pvsViewToLight",
     "pvsLightToClip",
+    "pvsLayer",
 )
 
 
@@ -288,11 +340,12 @@ def _matrices(uniforms: Mapping[str, object], prefix: str, members: list[MapLook
 def _pack(uniforms: Mapping[str, object], lookup: MapLookup) -> np.ndarray:
     i = lookup.vtk_index
     radius = float(cast(float, uniforms.get(f"pvsFilterRadius{i}", 0.0)))
+    layer = float(cast(float, uniforms.get(f"pvsLayer{i}", 0.0)))
     columns = [
         np.asarray(uniforms.get(f"{name}{i}", (0.0,) * 4), dtype=float)
         for name in ("pvsParams", "pvsCone", "pvsBias")
     ]
-    return np.column_stack([*columns, (radius, lookup.taps, 0.0, 0.0)]).astype(float)
+    return np.column_stack([*columns, (radius, lookup.taps, layer, 0.0)]).astype(float)
 
 
 def group_uniforms(
@@ -335,8 +388,14 @@ def group_uniforms(
         packed[f"{name}Pack"] = np.stack([_pack(uniforms, m) for m in members])
         if members[0].kind == "spot":
             packed[f"{name}LightToClip"] = _matrices(uniforms, "pvsLightToClip", members)
-        for part in GROUP_SAMPLERS[members[0].filter]:
-            packed[f"{name}{part}"] = [
-                int(cast(int, uniforms[f"pvs{part}{m.vtk_index}"])) for m in members
-            ]
+        units = {
+            part: [int(cast(int, uniforms[f"pvs{part}{m.vtk_index}"])) for m in members]
+            for part in GROUP_SAMPLERS[members[0].filter]
+        }
+        if members[0].kind in LOOPED:
+            # one texture for the whole group: every member names the same unit
+            packed[f"{name}Count"] = len(members)
+            packed.update({f"{name}{part}": unit[0] for part, unit in units.items()})
+        else:
+            packed.update({f"{name}{part}": unit for part, unit in units.items()})
     return packed

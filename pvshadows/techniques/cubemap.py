@@ -1,4 +1,10 @@
-"""Point-light shadows from a depth cube map: distance to the light over ``far``, six faces."""
+"""Point-light shadows from a depth cube map: distance to the light over ``far``, six faces.
+
+Where the context has cube map arrays, every light's cube is a slot of one
+array per resolution (:mod:`pvshadows.gl.cube_array`), so that receivers read
+all of them in one loop with one sampler; elsewhere each light has a cube of
+its own, read with one sampler per light.
+"""
 
 from __future__ import annotations
 
@@ -9,6 +15,8 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
+from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.cube_array import CubeArray, CubeSlot, cube_arrays_supported
 from pvshadows.gl.textures import DepthCube
 from pvshadows.model.plan import LightPlan
 from pvshadows.model.report import PassReport
@@ -20,12 +28,16 @@ from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
 
+#: Bytes of cube slots a first frame may allocate at once, for every positional
+#: light of the renderer (beyond that, and later, an array grows by doubling).
+FIRST_ALLOCATION = 1 << 30
+
 
 @dataclass
 class CubeState:
     """The depth cube kept for one light between frames."""
 
-    cube: DepthCube
+    cube: DepthCube | CubeSlot
     key: tuple | None = None
     far: float = 1.0
     nearest: float = 0.0
@@ -86,6 +98,29 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         super().__init__(window)
         self._pass = CubeDepthPass(window)
+        #: Cube map arrays by resolution; ``None`` where the context has none.
+        self.arrays: dict[int, CubeArray] | None = (
+            {} if cube_arrays_supported(opengl_for(window)) else None
+        )
+        self._frame = -1
+        self._activated: list[LightPlan] = []
+        self._allocations = 0
+
+    def _new_cube(self, resolution: int, context: FrameContext) -> DepthCube | CubeSlot:
+        if self.arrays is None:
+            return DepthCube(self._window, resolution)
+        if resolution not in self.arrays:
+            self.arrays[resolution] = CubeArray(self._window, resolution)
+        held = sum(len(array.taken) for array in self.arrays.values())
+        lights = sum(
+            1
+            for light in context.renderer.GetLights()
+            if light.GetSwitch() and light.GetPositional()
+        )
+        slot_bytes = 6 * 4 * resolution**2
+        return CubeSlot(
+            self.arrays[resolution], min(lights - held, max(1, FIRST_ALLOCATION // slot_bytes))
+        )
 
     def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
         """Bring the light's cube up to date for this frame.
@@ -108,7 +143,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         if state is None or state.cube.resolution != settings.resolution:
             if state is not None:
                 state.release()
-            state = CubeState(DepthCube(self._window, settings.resolution))
+            state = CubeState(self._new_cube(settings.resolution, context))
             self._states[vtk_id(plan.light)] = state
         position = plan.pose.position
         key = (
@@ -156,7 +191,10 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             The lookup call with the light's filter, and its samplers.
         """
         assert plan.settings is not None
-        return lookup_shading("cube", plan.vtk_index, plan.settings)
+        if self.arrays is None:
+            return lookup_shading("cube", plan.vtk_index, plan.settings)
+        texture = str(plan.settings.resolution)
+        return lookup_shading("cubes", plan.vtk_index, plan.settings, texture=texture)
 
     def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
         """Bind the light's cube and filter textures and return the receivers' uniforms.
@@ -180,7 +218,10 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         i = plan.vtk_index
         spot = pose.kind is LightKind.SPOT
         cone = np.cos(np.radians(pose.cone_angle)) if spot else -2.0
-        uniforms = self._filters.activate(i, settings, state.cube)
+        uniforms = self._array_units(plan, context)
+        uniforms.update(self._filters.activate(i, settings, state.cube))
+        if isinstance(state.cube, CubeSlot):
+            uniforms[f"pvsLayer{i}"] = float(state.cube.slot)
         uniforms.update(
             {
                 f"pvsViewToLight{i}": translation(-pose.position) @ context.view.view_to_world,
@@ -195,7 +236,41 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         )
         return uniforms
 
-    def cube_of(self, light: vtk.vtkLight) -> DepthCube | None:
+    def _array_units(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+        """Bind again the maps of this frame's earlier lights if their array grew since.
+
+        An array grows while the lights are brought up one by one; the units of
+        lights activated before then point at the array it grew out of, which
+        lacks the cubes drawn after.
+        """
+        if context.frame != self._frame:
+            self._frame, self._activated = context.frame, []
+        allocations = sum(a.allocations for a in self.arrays.values()) if self.arrays else 0
+        uniforms: dict[str, object] = {}
+        if allocations != self._allocations:
+            for earlier in self._activated:
+                assert earlier.settings is not None
+                cube = self._states[vtk_id(earlier.light)].cube
+                uniforms.update(self._filters.activate(earlier.vtk_index, earlier.settings, cube))
+        self._allocations = allocations
+        self._activated.append(plan)
+        return uniforms
+
+    def deactivate(self) -> None:
+        """Free the texture units bound by ``activate`` and the arrays grown out of."""
+        super().deactivate()
+        for array in (self.arrays or {}).values():
+            array.end_frame()
+
+    def release(self) -> None:
+        """Release every cube, the arrays, the pass's programs and the filters' textures."""
+        super().release()
+        for array in (self.arrays or {}).values():
+            array.release()
+        if self.arrays is not None:
+            self.arrays.clear()
+
+    def cube_of(self, light: vtk.vtkLight) -> DepthCube | CubeSlot | None:
         """Return the cube kept for a light, if any (for tests and debugging)."""
         state = self._states.get(vtk_id(light))
         return state.cube if state else None

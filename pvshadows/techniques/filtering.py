@@ -9,6 +9,7 @@ it for PCSS's blocker search, and the jittered disk offsets.
 from __future__ import annotations
 
 from pvshadows import _vtk as vtk
+from pvshadows.gl.cube_array import CubeSlot
 from pvshadows.gl.sampling import DiskOffsets, RawDepthView
 from pvshadows.gl.textures import DepthTexture
 from pvshadows.model.settings import ShadowSettings
@@ -24,7 +25,12 @@ PCSS_SEARCH = 16
 
 
 def lookup_shading(
-    kind: str, vtk_index: int, settings: ShadowSettings, *, has_map: bool = True
+    kind: str,
+    vtk_index: int,
+    settings: ShadowSettings,
+    *,
+    has_map: bool = True,
+    texture: str = "",
 ) -> LightShading:
     """Return how receivers read one light's map of a kind with its filter.
 
@@ -39,6 +45,10 @@ def lookup_shading(
     has_map : bool, default: True
         ``False`` when the map had nothing to draw: the lookup is then only
         the facing and cone test.
+    texture : str, default: ""
+        For maps that are layers of one texture (``kind="cubes"``), which
+        texture; the random and PCSS filters add their offsets' size, so the
+        lights of one group share every texture they read.
 
     Returns
     -------
@@ -58,11 +68,12 @@ def lookup_shading(
     if not has_map:
         lookup = MapLookup(kind, "lit", vtk_index)
     elif settings.filter == "pcf":
-        lookup = MapLookup(kind, "pcf", vtk_index, PCF_GRID[settings.pcf_taps])
+        lookup = MapLookup(kind, "pcf", vtk_index, PCF_GRID[settings.pcf_taps], texture)
     elif settings.filter in ("random", "pcss"):
-        lookup = MapLookup(kind, settings.filter, vtk_index, settings.samples)
+        offsets = f"x{max(settings.samples, PCSS_SEARCH)}" if texture else ""
+        lookup = MapLookup(kind, settings.filter, vtk_index, settings.samples, texture + offsets)
     else:
-        lookup = MapLookup(kind, "hard", vtk_index, HARD_BOX)
+        lookup = MapLookup(kind, "hard", vtk_index, HARD_BOX, texture)
     return LightShading(vtk_index, lookup.visibility_name, needs=(lookup,))
 
 
@@ -94,7 +105,7 @@ class FilterBindings:
         return int(texture.GetTextureUnit())
 
     def activate(
-        self, vtk_index: int, settings: ShadowSettings, depth: DepthTexture | None
+        self, vtk_index: int, settings: ShadowSettings, depth: DepthTexture | CubeSlot | None
     ) -> dict:
         """Bind one light's map and filter textures; return their uniforms.
 
@@ -104,7 +115,7 @@ class FilterBindings:
             The light's index among VTK's switched-on lights.
         settings : ShadowSettings
             Its filter and bias settings.
-        depth : DepthTexture or None
+        depth : DepthTexture, CubeSlot or None
             Its shadow map, ``None`` when it had nothing to draw.
 
         Returns
