@@ -78,10 +78,11 @@
 PVS_GROUP_ALL(PVS_GROUP_GLOBAL)
 
 #if defined(PVS_GROUP_LOOP)
-// Each light's visibility goes to its global through a ladder of compares:
-// a local array indexed by the loop counter costs llvmpipe about as much to
-// compile as one filter per light (32 lights: 10.9 s against 5.6 s).
-#define PVS_GROUP_PICK(k, visibility) if (j == k) { visibility = found; }
+// Each light's visibility goes to its global through a ladder of selects: a
+// local array indexed by the loop counter costs llvmpipe about as much to
+// compile as one filter per light (32 lights: 10.9 s against 4.4 s, where
+// VTK's own shader takes 3.7 s).
+#define PVS_GROUP_PICK(k, visibility) visibility = j == k ? found : visibility;
 
 void PVS_GROUP_LOOKUP(vec3 posVC, vec3 normalVC)
 {

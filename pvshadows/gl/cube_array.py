@@ -152,6 +152,8 @@ class CubeArray:
             gl.GL_FLOAT,
             None,
         )
+        # one level: complete before VTK sets its filters, as glCopyImageSubData requires
+        gl.glTexParameteri(target, gl.GL_TEXTURE_MAX_LEVEL, 0)
         gl.glBindTexture(target, 0)
         units.Free(unit)
         if self._handle:

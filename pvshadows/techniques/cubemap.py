@@ -28,9 +28,10 @@ from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
 
-#: Bytes of cube slots a first frame may allocate at once, for every positional
-#: light of the renderer (beyond that, and later, an array grows by doubling).
-FIRST_ALLOCATION = 1 << 30
+#: Bytes up to which an array that must grow makes room at once for every
+#: positional light of the renderer without a cube yet (so a first frame
+#: allocates once); beyond, it doubles.
+AT_ONCE = 1 << 30
 
 
 @dataclass
@@ -111,16 +112,16 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             return DepthCube(self._window, resolution)
         if resolution not in self.arrays:
             self.arrays[resolution] = CubeArray(self._window, resolution)
-        held = sum(len(array.taken) for array in self.arrays.values())
-        lights = sum(
+        array = self.arrays[resolution]
+        held = sum(len(each.taken) for each in self.arrays.values())
+        positional = sum(
             1
             for light in context.renderer.GetLights()
             if light.GetSwitch() and light.GetPositional()
         )
-        slot_bytes = 6 * 4 * resolution**2
-        return CubeSlot(
-            self.arrays[resolution], min(lights - held, max(1, FIRST_ALLOCATION // slot_bytes))
-        )
+        wanted = len(array.taken) + max(positional - held, 1)
+        most = max(len(array.taken) + 1, AT_ONCE // (6 * 4 * resolution**2))
+        return CubeSlot(array, min(wanted, most))
 
     def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
         """Bring the light's cube up to date for this frame.
