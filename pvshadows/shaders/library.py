@@ -263,7 +263,7 @@ def shadow_functions(lookups: Iterable[MapLookup]) -> str:
     return "\n".join(code)
 
 
-def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int]]:
+def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int | None]]:
     """Return the sampler arrays of the groups: name to (GLSL sampler type, length).
 
     Parameters
@@ -274,7 +274,8 @@ def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int]]:
     Returns
     -------
     dict
-        For example ``{"pvsCubePcfDepth": ("samplerCubeShadow", 2)}``.
+        For example ``{"pvsCubePcfDepth": ("samplerCubeShadow", 2)}``; the
+        length is ``None`` for a looped kind's one sampler.
 
     Examples
     --------
@@ -282,7 +283,7 @@ def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int]]:
     >>> group_samplers([MapLookup("sun", "pcss", 1, 16)])["pvsSunPcssRaw"]
     ('sampler2D', 1)
     """
-    samplers = {}
+    samplers: dict[str, tuple[str, int | None]] = {}
     for group, members in _groups(lookups).items():
         kind, filter_name = members[0].kind, members[0].filter
         types = {
