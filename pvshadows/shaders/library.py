@@ -10,7 +10,9 @@ The lights that read one kind of map with one filter form a *group*:
 filter's taps a loop over a uniform count (not a constant the driver
 unrolls), so the shader grows by one small lookup per light, not by lights
 times taps: with constant tap counts, 16 lights with 16-tap PCF took minutes
-to compile on llvmpipe, and 32 never finished.
+to compile on llvmpipe, and 32 never finished. The cubes of point lights, as
+layers of one cube map array (kind ``"cubes"``), are one loop per group over
+one sampler: the filter is compiled once however many lights there are.
 """
 
 from __future__ import annotations
