@@ -221,22 +221,17 @@ class CubeArray:
         """
         gl = self._gl
         size = self.resolution
-        faces = np.empty((6, size, size), np.float32)
-        gl.glGetTextureSubImage(
-            self._handle,
-            0,
-            0,
-            0,
-            6 * slot,
-            size,
-            size,
-            6,
-            gl.GL_DEPTH_COMPONENT,
-            gl.GL_FLOAT,
-            faces.nbytes,
-            faces,
+        layers = np.empty((6 * self.capacity, size, size), np.float32)
+        units = self._window.GetTextureUnitManager()
+        unit = units.Allocate()
+        self._window.GetState().vtkglActiveTexture(gl.GL_TEXTURE0 + unit)
+        gl.glBindTexture(gl.GL_TEXTURE_CUBE_MAP_ARRAY, self._handle)
+        gl.glGetTexImage(
+            gl.GL_TEXTURE_CUBE_MAP_ARRAY, 0, gl.GL_DEPTH_COMPONENT, gl.GL_FLOAT, layers
         )
-        return faces
+        gl.glBindTexture(gl.GL_TEXTURE_CUBE_MAP_ARRAY, 0)
+        units.Free(unit)
+        return layers[6 * slot : 6 * slot + 6].copy()
 
     def end_frame(self) -> None:
         """Delete the arrays this one grew out of (no unit points at them after the frame)."""
