@@ -28,9 +28,9 @@ from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
 
-#: Bytes up to which an array that must grow makes room at once for every
-#: positional light of the renderer without a cube yet (so a first frame
-#: allocates once); beyond, it doubles.
+#: Bytes up to which an array that must grow makes room at once for every point
+#: light of the renderer without a cube yet (so a first frame allocates once);
+#: beyond, and for spot lights given cubes, it doubles.
 AT_ONCE = 1 << 30
 
 
@@ -114,12 +114,15 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             self.arrays[resolution] = CubeArray(self._window, resolution)
         array = self.arrays[resolution]
         held = sum(len(each.taken) for each in self.arrays.values())
-        positional = sum(
+        bulbs = sum(
             1
             for light in context.renderer.GetLights()
-            if light.GetSwitch() and light.GetPositional()
+            if light.GetSwitch()
+            and light.GetIntensity() > 0
+            and light.GetPositional()
+            and light.GetConeAngle() >= 90
         )
-        wanted = len(array.taken) + max(positional - held, 1)
+        wanted = len(array.taken) + max(bulbs - held, 1)
         most = max(len(array.taken) + 1, AT_ONCE // (6 * 4 * resolution**2))
         return CubeSlot(array, min(wanted, most))
 
