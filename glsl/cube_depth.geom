@@ -2,7 +2,8 @@
 // Depth-cube pass, geometry stage: one draw fills all six faces. Each
 // triangle is sent to every face whose frustum it can touch, on the layer
 // (gl_Layer) of that face; faces left out of `faceMask` hold no caster and
-// are not drawn at all.
+// are not drawn at all. The cube is cube `layerBase / 6` of a cube map array
+// (0 for a cube of its own).
 
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 18) out;
@@ -12,6 +13,7 @@ out vec3 lightToPoint;
 
 uniform mat4 faceProjection[6];
 uniform int faceMask;
+uniform int layerBase;
 
 bool outsideFrustum(vec4 a, vec4 b, vec4 c)
 {
@@ -39,7 +41,7 @@ void main()
     }
     for (int i = 0; i < 3; ++i)
     {
-      gl_Layer = face;
+      gl_Layer = layerBase + face;
       lightToPoint = lightToPointVS[i];
       gl_Position = clip[i];
       EmitVertex();

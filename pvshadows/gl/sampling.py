@@ -6,6 +6,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.cube_array import CubeSlot
 from pvshadows.gl.textures import DepthTexture
 
 #: Pixels per side of the tile of per-pixel offset patterns.
@@ -39,14 +40,17 @@ class RawDepthView:
             (gl.GL_TEXTURE_WRAP_R, gl.GL_CLAMP_TO_EDGE),
         ):
             gl.glSamplerParameteri(self._sampler, name, value)
-        self._bound: list[int] = []
+        self._bound: dict[int, int] = {}
 
-    def bind(self, depth: DepthTexture) -> int:
+    def bind(self, depth: DepthTexture | CubeSlot) -> int:
         """Bind ``depth`` for plain reads on a free unit and return the unit.
+
+        A texture bound already this frame (a cube array that holds the maps of
+        several lights) keeps its unit.
 
         Parameters
         ----------
-        depth : DepthTexture
+        depth : DepthTexture or CubeSlot
             The shadow map.
 
         Returns
@@ -54,18 +58,20 @@ class RawDepthView:
         int
             The texture unit, for the sampler uniform.
         """
+        if depth.handle in self._bound:
+            return self._bound[depth.handle]
         gl = self._gl
         unit = self._window.GetTextureUnitManager().Allocate()
         self._window.GetState().vtkglActiveTexture(gl.GL_TEXTURE0 + unit)
         gl.glBindTexture(depth.target, depth.handle)
         gl.glBindSampler(unit, self._sampler)
-        self._bound.append(unit)
+        self._bound[depth.handle] = unit
         return unit
 
     def unbind_all(self) -> None:
         """Unbind the sampler from every unit bound this frame and free the units."""
         units = self._window.GetTextureUnitManager()
-        for unit in self._bound:
+        for unit in self._bound.values():
             self._gl.glBindSampler(unit, 0)
             units.Free(unit)
         self._bound.clear()

@@ -101,6 +101,17 @@ class DepthTexture:
         size = (self.resolution, self.resolution)
         finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
 
+    def bind_cleared(self, face: int | None = None) -> None:
+        """Bind the framebuffer as :meth:`bind_as_target` does and clear the attached depth.
+
+        Parameters
+        ----------
+        face : int, optional
+            As for :meth:`bind_as_target`.
+        """
+        self.bind_as_target(face)
+        self._gl.glClear(self._gl.GL_DEPTH_BUFFER_BIT)
+
     def release(self) -> None:
         """Delete the texture and framebuffer (the window's context must be current)."""
         if self._framebuffer:
@@ -121,6 +132,8 @@ class DepthCube(DepthTexture):
     """A six-face depth cube map (``GL_DEPTH_COMPONENT32F``) for point lights."""
 
     target_name = "GL_TEXTURE_CUBE_MAP"
+    #: First layer-face the depth pass writes (a cube of its own: 0).
+    layer_base = 0
 
     def _create(self) -> vtk.vtkTextureObject:
         gl = self._gl

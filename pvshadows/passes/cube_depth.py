@@ -9,6 +9,7 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import column_major, cube_face_projections, faces_touching_box
 from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.gl.cube_array import CubeSlot
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.timing import PassTimer
@@ -90,7 +91,7 @@ class CubeDepthPass:
 
     def render(
         self,
-        cube: DepthCube,
+        cube: DepthCube | CubeSlot,
         casters: list[CubeCaster],
         far: float,
         passes: str,
@@ -100,8 +101,8 @@ class CubeDepthPass:
 
         Parameters
         ----------
-        cube : DepthCube
-            The target.
+        cube : DepthCube or CubeSlot
+            The target: a cube of its own or one in a cube map array.
         casters : list of CubeCaster
             What to draw, with the faces each may touch.
         far : float
@@ -124,7 +125,7 @@ class CubeDepthPass:
         projections = cube_face_projections(far * 1e-4, far)
         program = self._program(passes)
         records: list[PassReport] = []
-        with depth_only_state(self._window) as gl:
+        with depth_only_state(self._window):
             bind_program(self._window, program)
             program.SetUniformf("invFar", 1.0 / far)
             if passes == "single":
@@ -133,10 +134,10 @@ class CubeDepthPass:
                 )
                 records.append(record)
                 with timer.measure(record):
-                    cube.bind_as_target()
-                    gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
+                    cube.bind_cleared()
                     program.SetUniformMatrix4x4v("faceProjection", 6, column_major(projections))
                     program.SetUniformi("faceMask", face_mask)
+                    program.SetUniformi("layerBase", cube.layer_base)
                     for caster in casters:
                         program.SetUniformMatrix4x4v(
                             "modelToLight", 1, column_major(caster.model_to_light)
@@ -149,8 +150,7 @@ class CubeDepthPass:
                     record = PassReport(f"cube face {_FACE_NAMES[face]}", "run")
                     records.append(record)
                     with timer.measure(record):
-                        cube.bind_as_target(face)
-                        gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
+                        cube.bind_cleared(face)
                         if not drawn:
                             record.status, record.detail = (
                                 "skipped",

@@ -10,7 +10,9 @@ The lights that read one kind of map with one filter form a *group*:
 filter's taps a loop over a uniform count (not a constant the driver
 unrolls), so the shader grows by one small lookup per light, not by lights
 times taps: with constant tap counts, 16 lights with 16-tap PCF took minutes
-to compile on llvmpipe, and 32 never finished.
+to compile on llvmpipe, and 32 never finished. The cubes of point lights, as
+layers of one cube map array (kind ``"cubes"``), are one loop per group over
+one sampler: the filter is compiled once however many lights there are.
 """
 
 from __future__ import annotations
@@ -23,7 +25,9 @@ import numpy as np
 
 from pvshadows.gl.programs import glsl_source
 
-#: Kinds of depth map and the GLSL names the filter file uses for each.
+#: Kinds of depth map and the GLSL names the filter file uses for each. "cubes"
+#: are the cubes of several lights as layers of one cube map array, looked up in
+#: one loop (:data:`LOOPED`).
 KINDS = {
     "cube": {
         "file": "shadow_cube.glsl",
@@ -39,6 +43,18 @@ KINDS = {
         "PVS_TRANSMIT_MAP": "samplerCube",
         "PVS_FRAME_OF_SIZE": "pvsCubeFrameOfSize",
         "PVS_TEXEL_TRANSMITTED": "pvsCubeTransmitted",
+    },
+    "cubes": {
+        "file": "shadow_cube_array.glsl",
+        "PVS_MAP": "PvsCubesMap",
+        "PVS_COMPARE_MAP": "samplerCubeArrayShadow",
+        "PVS_RAW_MAP": "samplerCubeArray",
+        "PVS_FRAME": "pvsCubesFrame",
+        "PVS_TAP": "pvsCubesTap",
+        "PVS_TEXEL": "pvsCubesTexel",
+        "PVS_TEXEL_DEPTH": "pvsCubesTexelDepth",
+        "PVS_SEARCH_RADIUS": "pvsCubesSearchRadius",
+        "PVS_PENUMBRA_RADIUS": "pvsCubesPenumbraRadius",
     },
     "spot": {
         "file": "shadow_spot.glsl",
@@ -71,6 +87,11 @@ KINDS = {
         "PVS_TEXEL_TRANSMITTED": "pvsSunTransmitted",
     },
 }
+#: Kinds whose lights are layers of one texture, looked up in one loop with one
+#: sampler per group, and the files each needs before its own.
+LOOPED = {"cubes": ("shadow_cube.glsl",)}
+#: The GLSL extension a looped kind needs in a GLSL 1.50 shader.
+EXTENSIONS = {"cubes": "GL_ARB_texture_cube_map_array"}
 #: The filters of ``shadow_filters.glsl``; "lit" (no map: only the facing and cone
 #: test) serves lights whose map had nothing to draw.
 FILTERS = ("lit", "hard", "pcf", "random", "pcss")
@@ -113,7 +134,11 @@ class MapLookup:
     translucent : bool
         The light's casters include translucent ones: the filter's result
         is multiplied by what they let through, read from the light's
-        transmittance companion (``pvsTransmit{i}``).
+        transmittance companion (``pvsTransmit{i}``). Not for a looped kind.
+    texture : str
+        For a looped kind, which texture holds the light's map (the lights of
+        a group share it), for example ``"1024"`` for the cube array of
+        1024-texel cubes; its layer is the uniform ``pvsLayer{i}``.
     """
 
     kind: str
@@ -121,12 +146,15 @@ class MapLookup:
     vtk_index: int
     taps: int = 0
     translucent: bool = False
+    texture: str = ""
 
     @property
     def group(self) -> str:
-        """Name of the light's group, for example ``"CubePcf"`` or ``"SpotHardTranslucent"``."""
-        return filter_function(self.kind, self.filter)[3:] + (
-            "Translucent" if self.translucent else ""
+        """Name of the light's group, e.g. ``"SpotHardTranslucent"`` or ``"CubesPcf1024"``."""
+        return (
+            filter_function(self.kind, self.filter)[3:]
+            + ("Translucent" if self.translucent else "")
+            + self.texture
         )
 
     @property
@@ -197,6 +225,9 @@ def _group_instance(group: str, lookups: list[MapLookup]) -> str:
     if first.translucent:
         names["PVS_GROUP_TRANSLUCENT"] = ""
         names["PVS_GROUP_TRANSMIT"] = f"{uniform}{TRANSMIT_SAMPLER}"
+    if first.kind in LOOPED:
+        names["PVS_GROUP_LOOP"] = ""
+        names["PVS_GROUP_COUNT"] = f"{uniform}Count"
     each = " ".join(f"EACH({j}, {lookup.visibility_name})" for j, lookup in enumerate(lookups))
     names["PVS_GROUP_ALL(EACH)"] = each
     defines, undefines = _defines(names)
@@ -258,15 +289,16 @@ def shadow_functions(lookups: Iterable[MapLookup]) -> str:
     by_kind: dict[str, dict[str, list[MapLookup]]] = {}
     for group, members in groups.items():
         by_kind.setdefault(members[0].kind, {})[group] = members
-    code = [glsl_source("shadow_common.glsl")]
-    for kind, kind_groups in by_kind.items():
-        code.append(glsl_source(KINDS[kind]["file"]))
-        code.append(_kind_instance(kind, kind_groups))
+    files = [glsl_source("shadow_common.glsl")]
+    for kind in by_kind:
+        files.extend(glsl_source(name) for name in (*LOOPED.get(kind, ()), KINDS[kind]["file"]))
+    code = list(dict.fromkeys(files))
+    code.extend(_kind_instance(kind, kind_groups) for kind, kind_groups in by_kind.items())
     code.append(_gather(lookup for members in groups.values() for lookup in members))
     return "\n".join(code)
 
 
-def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int]]:
+def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int | None]]:
     """Return the sampler arrays of the groups: name to (GLSL sampler type, length).
 
     Parameters
@@ -277,7 +309,8 @@ def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int]]:
     Returns
     -------
     dict
-        For example ``{"pvsCubePcfDepth": ("samplerCubeShadow", 2)}``.
+        For example ``{"pvsCubePcfDepth": ("samplerCubeShadow", 2)}``; the
+        length is ``None`` for a looped kind's one sampler.
 
     Examples
     --------
@@ -288,18 +321,41 @@ def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int]]:
     {'pvsCubeHardTranslucentDepth': ('samplerCubeShadow', 1), \
 'pvsCubeHardTranslucentTransmit': ('samplerCube', 1)}
     """
-    samplers = {}
+    samplers: dict[str, tuple[str, int | None]] = {}
     for group, members in _groups(lookups).items():
         kind = members[0].kind
         types = {
             "Depth": KINDS[kind]["PVS_COMPARE_MAP"],
             "Raw": KINDS[kind]["PVS_RAW_MAP"],
             "Offsets": "sampler3D",
-            TRANSMIT_SAMPLER: KINDS[kind]["PVS_TRANSMIT_MAP"],
+            TRANSMIT_SAMPLER: KINDS[kind].get("PVS_TRANSMIT_MAP", ""),
         }
+        length = None if kind in LOOPED else len(members)
         for part in members[0].samplers:
-            samplers[f"pvs{group}{part}"] = (types[part], len(members))
+            samplers[f"pvs{group}{part}"] = (types[part], length)
     return samplers
+
+
+def extensions(lookups: Iterable[MapLookup]) -> list[str]:
+    """Return the GLSL extensions the lookups need in a GLSL 1.50 shader.
+
+    Parameters
+    ----------
+    lookups : iterable of MapLookup
+        The map lookups of a receiver's lights.
+
+    Returns
+    -------
+    list of str
+        For example ``["GL_ARB_texture_cube_map_array"]`` for cube arrays.
+
+    Examples
+    --------
+    >>> from pvshadows.shaders.library import MapLookup, extensions
+    >>> extensions([MapLookup("cubes", "pcf", 0, 2, "1024"), MapLookup("sun", "hard", 1)])
+    ['GL_ARB_texture_cube_map_array']
+    """
+    return list(dict.fromkeys(EXTENSIONS[m.kind] for m in lookups if m.kind in EXTENSIONS))
 
 
 #: Prefixes of each light's own uniforms, which :func:`group_uniforms` packs.
@@ -314,6 +370,7 @@ OWN_UNIFORMS = (
     "pvsFilterRadius",
     "pvsViewToLight",
     "pvsLightToClip",
+    "pvsLayer",
 )
 
 
@@ -324,11 +381,12 @@ def _matrices(uniforms: Mapping[str, object], prefix: str, members: list[MapLook
 def _pack(uniforms: Mapping[str, object], lookup: MapLookup) -> np.ndarray:
     i = lookup.vtk_index
     radius = float(cast(float, uniforms.get(f"pvsFilterRadius{i}", 0.0)))
+    layer = float(cast(float, uniforms.get(f"pvsLayer{i}", 0.0)))
     columns = [
         np.asarray(uniforms.get(f"{name}{i}", (0.0,) * 4), dtype=float)
         for name in ("pvsParams", "pvsCone", "pvsBias")
     ]
-    return np.column_stack([*columns, (radius, lookup.taps, 0.0, 0.0)]).astype(float)
+    return np.column_stack([*columns, (radius, lookup.taps, layer, 0.0)]).astype(float)
 
 
 def group_uniforms(
@@ -371,8 +429,14 @@ def group_uniforms(
         packed[f"{name}Pack"] = np.stack([_pack(uniforms, m) for m in members])
         if members[0].kind == "spot":
             packed[f"{name}LightToClip"] = _matrices(uniforms, "pvsLightToClip", members)
-        for part in members[0].samplers:
-            packed[f"{name}{part}"] = [
-                int(cast(int, uniforms[f"pvs{part}{m.vtk_index}"])) for m in members
-            ]
+        units = {
+            part: [int(cast(int, uniforms[f"pvs{part}{m.vtk_index}"])) for m in members]
+            for part in members[0].samplers
+        }
+        if members[0].kind in LOOPED:
+            # one texture for the whole group: every member names the same unit
+            packed[f"{name}Count"] = len(members)
+            packed.update({f"{name}{part}": unit[0] for part, unit in units.items()})
+        else:
+            packed.update({f"{name}{part}": unit for part, unit in units.items()})
     return packed

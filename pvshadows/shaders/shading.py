@@ -27,6 +27,7 @@ from pvshadows.gl.programs import glsl_source
 from pvshadows.shaders.landing import LandingCheck
 from pvshadows.shaders.library import (
     MapLookup,
+    extensions,
     group_samplers,
     group_uniforms,
     shadow_functions,
@@ -38,6 +39,8 @@ PROBE_UNIFORM = "pvsProbeLight"
 _MAIN = "void main()"
 _VIEW_POSITION = "vec4 vertexVC = vertexVCVSOutput;"
 _PROBE_ANCHOR = "//VTK::Picking::Impl"
+#: Where GLSL extension directives go: before any code (VTK puts ``#version`` there).
+_SYSTEM = "//VTK::System::Dec"
 _FACET_NORMAL = "\n  pvsFacetVC = cross(dFdx(vertexVC.xyz), dFdy(vertexVC.xyz));"
 
 
@@ -239,6 +242,9 @@ def receiver_replacements(
         name: (kind, None) for light in lights for name, kind in light.samplers.items()
     }
     samplers.update(group_samplers(lookups))
+    directives = "".join(f"\n#extension {name} : require" for name in extensions(lookups))
+    if directives:
+        edits.append((_SYSTEM, _SYSTEM + directives))
     normal = _normal_expression(actor, triangles)
     for light in lights:
         edits.extend(_light_hooks(light, pbr, normal, light.vtk_index == first_lookup))
@@ -372,7 +378,7 @@ def uniform_setter(name: str, value: object) -> Callable[[vtk.vtkUniforms], None
         return lambda uniforms: uniforms.SetUniformMatrix4x4(name, matrix)
     if array.ndim == 3 and array.shape[1:] == (4, 4):
         matrices = column_major(array).tolist()
-        return lambda uniforms: uniforms.SetUniformMatrix4x4v(name, len(matrices), matrices)
+        return lambda uniforms: uniforms.SetUniformMatrix4x4v(name, array.shape[0], matrices)
     if array.shape == (4,):
         vector = array.astype(np.float32).tolist()
         return lambda uniforms: uniforms.SetUniform4f(name, vector)

@@ -1,8 +1,15 @@
 """Point-light shadows from a depth cube map: distance to the light over ``far``, six faces.
 
+Where the context has cube map arrays, every light's cube is a slot of one
+array per resolution (:mod:`pvshadows.gl.cube_array`), so that receivers read
+all of them in one loop with one sampler; elsewhere each light has a cube of
+its own, read with one sampler per light.
+
 The cube holds the opaque casters; translucent ones go to its transmittance
 companion (:mod:`pvshadows.techniques.translucent`), made only for a light that
-has some, and drawn by the same route (one layered draw, or one per face).
+has some, and drawn by the same route (one layered draw, or one per face). A
+light with translucent casters keeps a cube of its own, read beside its
+companion, outside the arrays.
 """
 
 from __future__ import annotations
@@ -14,6 +21,8 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
+from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.cube_array import CubeArray, CubeSlot, cube_arrays_supported
 from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.transmittance_textures import TransmittanceCube, TransmittanceTexture
 from pvshadows.model.plan import LightPlan
@@ -33,12 +42,17 @@ from pvshadows.techniques.translucent import (
     translucent_key,
 )
 
+#: Bytes up to which an array that must grow makes room at once for every point
+#: light of the renderer without a cube yet (so a first frame allocates once);
+#: beyond, and for spot lights given cubes, it doubles.
+AT_ONCE = 1 << 30
+
 
 @dataclass
 class CubeState:
     """The depth cube kept for one light between frames."""
 
-    cube: DepthCube
+    cube: DepthCube | CubeSlot
     key: tuple | None = None
     far: float = 1.0
     nearest: float = 0.0
@@ -109,6 +123,32 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         super().__init__(window)
         self._pass = CubeDepthPass(window)
         self._companions = Companions(window)
+        #: Cube map arrays by resolution; ``None`` where the context has none.
+        self.arrays: dict[int, CubeArray] | None = (
+            {} if cube_arrays_supported(opengl_for(window)) else None
+        )
+        self._frame = -1
+        self._activated: list[LightPlan] = []
+        self._allocations = 0
+
+    def _new_cube(self, resolution: int, context: FrameContext, own: bool) -> DepthCube | CubeSlot:
+        if own or self.arrays is None:
+            return DepthCube(self._window, resolution)
+        if resolution not in self.arrays:
+            self.arrays[resolution] = CubeArray(self._window, resolution)
+        array = self.arrays[resolution]
+        held = sum(len(each.taken) for each in self.arrays.values())
+        bulbs = sum(
+            1
+            for light in context.renderer.GetLights()
+            if light.GetSwitch()
+            and light.GetIntensity() > 0
+            and light.GetPositional()
+            and light.GetConeAngle() >= 90
+        )
+        wanted = len(array.taken) + max(bulbs - held, 1)
+        most = max(len(array.taken) + 1, AT_ONCE // (6 * 4 * resolution**2))
+        return CubeSlot(array, min(wanted, most))
 
     def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
         """Bring the light's cube up to date for this frame.
@@ -128,14 +168,19 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         settings = plan.settings
         assert settings is not None and plan.pose is not None
         state = self._states.get(vtk_id(plan.light))
-        if state is None or state.cube.resolution != settings.resolution:
+        opaque, translucent = split_casters(plan.casters)
+        own = bool(translucent) or self.arrays is None
+        if (
+            state is None
+            or state.cube.resolution != settings.resolution
+            or isinstance(state.cube, DepthCube) != own
+        ):
             if state is not None:
                 state.release()
-            state = CubeState(DepthCube(self._window, settings.resolution))
+            state = CubeState(self._new_cube(settings.resolution, context, own))
             self._states[vtk_id(plan.light)] = state
         position = plan.pose.position
         state.nearest, state.far = distance_range(position, plan.casters)
-        opaque, translucent = split_casters(plan.casters)
         companion = self._update_companion(plan, context, state, translucent)
         state.drawn = bool(opaque)
         if not opaque:
@@ -204,9 +249,13 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         return reports
 
     def release(self) -> None:
-        """Release every cube and companion, and the passes' programs."""
+        """Release every cube, companion and array, and the passes' programs."""
         super().release()
         self._companions.release()
+        for array in (self.arrays or {}).values():
+            array.release()
+        if self.arrays is not None:
+            self.arrays.clear()
 
     def shading(self, plan: LightPlan) -> LightShading:
         """Return how receivers read this light's cube.
@@ -224,6 +273,11 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         """
         state = self._states[vtk_id(plan.light)]
         assert plan.settings is not None
+        if isinstance(state.cube, CubeSlot):
+            texture = str(plan.settings.resolution)
+            return lookup_shading(
+                "cubes", plan.vtk_index, plan.settings, has_map=state.drawn, texture=texture
+            )
         return lookup_shading(
             "cube",
             plan.vtk_index,
@@ -254,9 +308,12 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         i = plan.vtk_index
         spot = pose.kind is LightKind.SPOT
         cone = np.cos(np.radians(pose.cone_angle)) if spot else -2.0
-        uniforms = self._filters.activate(i, settings, state.cube if state.drawn else None)
+        uniforms = self._array_units(plan, context)
+        uniforms.update(self._filters.activate(i, settings, state.cube if state.drawn else None))
         if state.companion is not None:
             uniforms.update(self._filters.activate_transmittance(i, state.companion.texture))
+        if isinstance(state.cube, CubeSlot):
+            uniforms[f"pvsLayer{i}"] = float(state.cube.slot)
         uniforms.update(
             {
                 f"pvsViewToLight{i}": translation(-pose.position) @ context.view.view_to_world,
@@ -271,7 +328,36 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         )
         return uniforms
 
-    def cube_of(self, light: vtk.vtkLight) -> DepthCube | None:
+    def _array_units(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+        """Bind again the maps of this frame's earlier lights if their array grew since.
+
+        An array grows while the lights are brought up one by one; the units of
+        lights activated before then point at the array it grew out of, which
+        lacks the cubes drawn after.
+        """
+        if context.frame != self._frame:
+            self._frame, self._activated = context.frame, []
+        allocations = sum(a.allocations for a in self.arrays.values()) if self.arrays else 0
+        uniforms: dict[str, object] = {}
+        if allocations != self._allocations:
+            for earlier in self._activated:
+                assert earlier.settings is not None
+                state = self._states[vtk_id(earlier.light)]
+                if isinstance(state.cube, CubeSlot) and state.drawn:
+                    uniforms.update(
+                        self._filters.activate(earlier.vtk_index, earlier.settings, state.cube)
+                    )
+        self._allocations = allocations
+        self._activated.append(plan)
+        return uniforms
+
+    def deactivate(self) -> None:
+        """Free the texture units bound by ``activate`` and the arrays grown out of."""
+        super().deactivate()
+        for array in (self.arrays or {}).values():
+            array.end_frame()
+
+    def cube_of(self, light: vtk.vtkLight) -> DepthCube | CubeSlot | None:
         """Return the cube kept for a light, if any (for tests and debugging)."""
         state = self._states.get(vtk_id(light))
         return state.cube if state else None

@@ -9,6 +9,7 @@ it for PCSS's blocker search, and the jittered disk offsets.
 from __future__ import annotations
 
 from pvshadows import _vtk as vtk
+from pvshadows.gl.cube_array import CubeSlot
 from pvshadows.gl.sampling import DiskOffsets, RawDepthView
 from pvshadows.gl.textures import DepthTexture
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
@@ -31,6 +32,7 @@ def lookup_shading(
     *,
     has_map: bool = True,
     translucent: bool = False,
+    texture: str = "",
 ) -> LightShading:
     """Return how receivers read one light's map of a kind with its filter.
 
@@ -49,6 +51,10 @@ def lookup_shading(
         ``True`` when the light's translucent casters were drawn into a
         transmittance companion (``pvsTransmit{i}``): the lookup multiplies
         the filter's result by what they let through.
+    texture : str, default: ""
+        For maps that are layers of one texture (``kind="cubes"``), which
+        texture; the random and PCSS filters add their offsets' size, so the
+        lights of one group share every texture they read.
 
     Returns
     -------
@@ -66,13 +72,18 @@ def lookup_shading(
     ('pvsMapVisibility2', 'SunPcf', 2)
     """
     if not has_map:
-        lookup = MapLookup(kind, "lit", vtk_index, translucent=translucent)
+        lookup = MapLookup(kind, "lit", vtk_index, translucent=translucent, texture=texture)
     elif settings.filter == "pcf":
-        lookup = MapLookup(kind, "pcf", vtk_index, PCF_GRID[settings.pcf_taps], translucent)
+        lookup = MapLookup(
+            kind, "pcf", vtk_index, PCF_GRID[settings.pcf_taps], translucent, texture
+        )
     elif settings.filter in ("random", "pcss"):
-        lookup = MapLookup(kind, settings.filter, vtk_index, settings.samples, translucent)
+        offsets = f"x{max(settings.samples, PCSS_SEARCH)}" if texture else ""
+        lookup = MapLookup(
+            kind, settings.filter, vtk_index, settings.samples, translucent, texture + offsets
+        )
     else:
-        lookup = MapLookup(kind, "hard", vtk_index, HARD_BOX, translucent)
+        lookup = MapLookup(kind, "hard", vtk_index, HARD_BOX, translucent, texture)
     return LightShading(vtk_index, lookup.visibility_name, needs=(lookup,))
 
 
@@ -104,7 +115,7 @@ class FilterBindings:
         return int(texture.GetTextureUnit())
 
     def activate(
-        self, vtk_index: int, settings: ShadowSettings, depth: DepthTexture | None
+        self, vtk_index: int, settings: ShadowSettings, depth: DepthTexture | CubeSlot | None
     ) -> dict:
         """Bind one light's map and filter textures; return their uniforms.
 
@@ -114,7 +125,7 @@ class FilterBindings:
             The light's index among VTK's switched-on lights.
         settings : ShadowSettings
             Its filter and bias settings.
-        depth : DepthTexture or None
+        depth : DepthTexture, CubeSlot or None
             Its shadow map, ``None`` when it had nothing to draw.
 
         Returns
