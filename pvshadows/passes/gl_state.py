@@ -1,4 +1,4 @@
-"""Entering and leaving a depth pass without VTK losing track of GL state."""
+"""Entering and leaving a map pass (depth or transmittance) without VTK losing track of GL state."""
 
 from __future__ import annotations
 
@@ -27,21 +27,34 @@ def depth_only_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
     module
         ``OpenGL.GL``, for the pass's own calls.
     """
-    gl = opengl_for(window)
-    state = window.GetState()
-    state.Push()
-    try:
+    with _offscreen_pass(window) as (gl, state):
         state.vtkglDisable(gl.GL_BLEND)
-        state.vtkglDisable(gl.GL_SCISSOR_TEST)
-        state.vtkglDisable(gl.GL_STENCIL_TEST)
-        state.vtkglDisable(gl.GL_CULL_FACE)
         state.vtkglEnable(gl.GL_DEPTH_TEST)
         state.vtkglDepthFunc(gl.GL_LESS)
         state.vtkglDepthMask(True)
         state.vtkglColorMask(False, False, False, False)
         state.vtkglClearDepth(1.0)
-        gl.glEnable(gl.GL_DEPTH_CLAMP)
         yield gl
+
+
+@contextmanager
+def _offscreen_pass(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
+    """Push VTK's state, set what every map pass shares, and pop it afterwards.
+
+    Every map pass draws without scissor, stencil or culling (a caster asks
+    for culling itself) and with depth clamping, so casters beyond the map's
+    far plane stay drawn; VTK does not track depth clamping, so it is
+    switched back off here. Yields ``(OpenGL.GL, vtkOpenGLState)``.
+    """
+    gl = opengl_for(window)
+    state = window.GetState()
+    state.Push()
+    try:
+        state.vtkglDisable(gl.GL_SCISSOR_TEST)
+        state.vtkglDisable(gl.GL_STENCIL_TEST)
+        state.vtkglDisable(gl.GL_CULL_FACE)
+        gl.glEnable(gl.GL_DEPTH_CLAMP)
+        yield gl, state
     finally:
         gl.glDisable(gl.GL_DEPTH_CLAMP)
         state.Pop()
@@ -86,13 +99,7 @@ def transmittance_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
     module
         ``OpenGL.GL``, for the pass's own calls.
     """
-    gl = opengl_for(window)
-    state = window.GetState()
-    state.Push()
-    try:
-        state.vtkglDisable(gl.GL_SCISSOR_TEST)
-        state.vtkglDisable(gl.GL_STENCIL_TEST)
-        state.vtkglDisable(gl.GL_CULL_FACE)
+    with _offscreen_pass(window) as (gl, state):
         state.vtkglDisable(gl.GL_DEPTH_TEST)
         state.vtkglDepthMask(False)
         state.vtkglColorMask(True, True, True, True)
@@ -100,8 +107,4 @@ def transmittance_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
         state.vtkglBlendEquationSeparate(gl.GL_FUNC_ADD, gl.GL_MIN)
         state.vtkglBlendFuncSeparate(gl.GL_ZERO, gl.GL_SRC_COLOR, gl.GL_ONE, gl.GL_ONE)
         state.vtkglClearColor(1.0, 1.0, 1.0, 1.0)
-        gl.glEnable(gl.GL_DEPTH_CLAMP)
         yield gl
-    finally:
-        gl.glDisable(gl.GL_DEPTH_CLAMP)
-        state.Pop()
