@@ -1,8 +1,8 @@
 """What a Jupyter user sees: rich tables, and the pictures notebook backends show."""
 
-import base64
-import io
-import time
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,6 +10,8 @@ from IPython.lib.pretty import pretty
 
 from conftest import draw, spot_box_scene
 from pvshadows.verify.measure import Measurement
+
+TRAME_SESSION = Path(__file__).with_name("trame_session.py")
 
 
 def test_last_frame_and_measure_display_as_tables():
@@ -73,38 +75,22 @@ def test_static_notebook_backend_shows_the_shadows():
     assert shown[dark].max() <= 1 and plain[dark].min() > 40
 
 
-def _streamed_image(window):
-    """The JPEG trame-vtk's server-side view sends for a window (its image delivery protocol)."""
-    from PIL import Image
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkWebCore import vtkWebApplication
-
-    app = vtkWebApplication()
-    app.InvalidateCache(window)
-    for _ in range(100):
-        buffer = app.StillRenderToBuffer(window, 0, 100)
-        if (
-            buffer is not None
-            and buffer.GetDataSize()
-            and not app.GetHasImagesBeingProcessed(window)
-        ):
-            break
-        time.sleep(0.05)
-    jpeg = base64.b64decode(vtk_to_numpy(buffer).tobytes())
-    return np.asarray(Image.open(io.BytesIO(jpeg)).convert("RGB")).astype(int)
-
-
-def test_trame_server_side_backend_shows_the_shadows():
+def test_trame_server_side_backend_shows_the_shadows(tmp_path):
     """``jupyter_backend="server"``: trame renders the plotter's own window and streams it."""
     pytest.importorskip("trame_pyvista", reason="needs trame: pip install '.[jupyter]'")
     plain, shot, dark = _shadowed_twin()
-    pl, _ = spot_box_scene(notebook=True)
-    pl.shadows.enable(technique="map", filter="hard")
-    widget = pl.show(jupyter_backend="server", return_viewer=True)
-    (view,) = widget._viewer.views
-    window = view._VtkRemoteView__view  # the window trame-vtk's image delivery renders
-    assert window is pl.render_window
-    streamed = _streamed_image(window)
+    out = tmp_path / "streamed.npz"
+    result = subprocess.run(
+        [sys.executable, str(TRAME_SESSION), str(out)],
+        cwd=TRAME_SESSION.parent,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    saved = np.load(out)
+    assert bool(saved["own_window"])
+    streamed = saved["streamed"].astype(int)
     assert streamed.shape == shot.shape
     assert streamed[dark].mean() < 8 and plain[dark].mean() > 100
     assert np.abs(streamed - shot).mean() < 2  # JPEG at quality 100

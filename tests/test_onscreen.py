@@ -27,8 +27,6 @@ pytestmark = [
         shutil.which("Xvfb") is None,
         reason="Xvfb is not installed (Debian/Ubuntu package xvfb; .ci/run installs it)",
     ),
-    # One worker runs the whole module, so the recorded session runs once.
-    pytest.mark.xdist_group("onscreen"),
 ]
 
 SESSION = Path(__file__).with_name("onscreen_session.py")
