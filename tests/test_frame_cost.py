@@ -12,6 +12,7 @@ def counters(pl):
         "reread": pl.shadows._reader.reread,
         "cone tests": shadows.reach.tests,
         "edits": shadows._edits.edited,
+        "received": shadows._edits.received,
         "uniforms": shadows._edits.uniform_calls,
         "waited": shadows._timer.waited,
     }
@@ -62,6 +63,7 @@ def test_moving_one_actor_rereads_and_tests_that_actor_only():
     assert counted["reread"] == 1
     assert counted["cone tests"] == 1
     assert counted["edits"] == 1
+    assert counted["received"] == 1  # the other receivers take changed uniforms by kind
     assert pl.shadows._renderers[0].snapshot.changed == {moved.__this__}
 
 
@@ -74,6 +76,7 @@ def test_moving_the_light_tests_every_actor_once_and_runs_its_pass():
     counted = change(before, counters(pl))
     assert counted["reread"] == 0
     assert counted["cone tests"] == actors
+    assert counted["received"] == 0
     assert pl.shadows.last_frame.passes_run == 1
 
 

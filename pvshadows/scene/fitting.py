@@ -129,11 +129,14 @@ def spot_shadowing_casters(
     list of ActorState
         The casters that matter for the fit of the light's map.
     """
+    corners = _sheet_corners(casters, receivers)
     kept = []
     for state in casters:
-        others = np.array([r.bounds for r in receivers if r is not state]).reshape(-1, 2, 3)
+        if state.sheet is None:
+            kept.append(state)
+            continue
         away = state.bounds.mean(axis=0) - pose.position
-        if not _flat_and_lit_above(state, away, others):
+        if not _flat_and_lit_above(state, away, receivers, corners):
             kept.append(state)
     return kept
 
@@ -247,30 +250,30 @@ def _view_corners(camera: vtk.vtkCamera, aspect: float) -> np.ndarray:
     return world[:, :3] / world[:, 3:4]
 
 
-def _flat_and_lit_above(state: ActorState, direction: np.ndarray, others: np.ndarray) -> bool:
-    """Whether a caster is a flat sheet with every other receiver on its lit side."""
-    points = state.triangles.points
-    if points.shape[0] < 3:
-        return True
-    tri = state.triangles.triangles[0]
-    normal = np.cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]])
-    size = float(np.ptp(points, axis=0).max())
-    if not np.linalg.norm(normal) > 0.0 or size == 0.0:
+def _sheet_corners(casters: list[ActorState], receivers: list[ActorState]) -> np.ndarray:
+    """Return the receivers' box corners ``(n, 8, 3)`` when some caster is flat (else none)."""
+    if all(state.sheet is None for state in casters):
+        return np.zeros((0, 8, 3))
+    boxes = np.array([r.bounds for r in receivers]).reshape(-1, 2, 3)
+    return _box_corners(boxes).reshape(-1, 8, 3)
+
+
+def _flat_and_lit_above(
+    state: ActorState, direction: np.ndarray, receivers: list[ActorState], corners: np.ndarray
+) -> bool:
+    """Whether a caster is a flat sheet with every other receiver on its lit side.
+
+    ``corners`` are the receivers' box corners from :func:`_sheet_corners`,
+    in the order of ``receivers``.
+    """
+    sheet = state.sheet
+    if sheet is None:
         return False
-    normal /= np.linalg.norm(normal)
-    if np.abs((points - points[tri[0]]) @ normal).max() > 1e-6 * size:
-        return False
-    world_normal = np.linalg.inv(state.matrix[:3, :3]).T @ normal
-    world_normal /= np.linalg.norm(world_normal)
-    if world_normal @ direction > 0.0:
-        world_normal = -world_normal
-    anchor = (state.matrix @ np.append(points[tri[0]] + state.triangles.center, 1.0))[:3]
-    if others.size == 0:
+    others = corners[[r is not state for r in receivers]]
+    if sheet.size == 0.0 or others.size == 0:
         return True
-    corners = np.stack(
-        [others[:, [i, j, k], [0, 1, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)], axis=1
-    )
-    return bool(np.all((corners - anchor) @ world_normal >= -1e-6 * size))
+    normal = -sheet.normal if sheet.normal @ direction > 0.0 else sheet.normal
+    return bool(np.all((others - sheet.anchor) @ normal >= -1e-6 * sheet.size))
 
 
 def sun_rotation(pose: LightPose) -> np.ndarray:
@@ -351,12 +354,12 @@ def sun_fit(
         return None
     region_lo, region_hi = lo[visible].min(axis=0), hi[visible].max(axis=0)
     caster_boxes = _light_boxes(rotation, np.array([a.bounds for a in casters]))
+    corners = _sheet_corners(casters, receivers)
     relevant = []
     for state, box in zip(casters, caster_boxes, strict=True):
         if np.any(box[1, :2] < region_lo) or np.any(box[0, :2] > region_hi):
             continue
-        others = np.array([r.bounds for r in receivers if r is not state])
-        if _flat_and_lit_above(state, pose.direction, others):
+        if _flat_and_lit_above(state, pose.direction, receivers, corners):
             continue
         relevant.append(box)
     if not relevant:

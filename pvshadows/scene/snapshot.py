@@ -67,8 +67,18 @@ class ActorState:
     transmittance: float = 0.0
 
     def model_matrix(self) -> np.ndarray:
-        """Return the model-to-world matrix of :attr:`triangles`' centred points (float64)."""
-        return self.matrix @ translation(self.triangles.center)
+        """Return the model-to-world matrix of :attr:`triangles`' centred points (float64).
+
+        Computed once per state and read-only: every pass of every light
+        reads the same matrix.
+        """
+        return self._model_matrix
+
+    @cached_property
+    def _model_matrix(self) -> np.ndarray:
+        matrix = self.matrix @ translation(self.triangles.center)
+        matrix.setflags(write=False)
+        return matrix
 
     def key(self) -> tuple:
         """Return a value that changes when the actor's shadow-casting shape changes."""
@@ -77,6 +87,51 @@ class ActorState:
     @cached_property
     def _key(self) -> tuple:
         return (vtk_id(self.actor), self.triangles.version, self.matrix.tobytes())
+
+    @cached_property
+    def sheet(self) -> Sheet | None:
+        """The plane the actor lies in when it is flat (a ground, a wall), else ``None``.
+
+        Flat means every point within ``1e-6`` of the actor's size of the
+        plane of its first triangle. Computed once per state: a frame that
+        did not change the actor keeps it.
+        """
+        points = self.triangles.points
+        if points.shape[0] < 3:
+            return Sheet(np.zeros(3), np.zeros(3), 0.0)
+        tri = self.triangles.triangles[0]
+        normal = np.cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]])
+        size = float(np.ptp(points, axis=0).max())
+        length = float(np.linalg.norm(normal))
+        if not length > 0.0 or size == 0.0:
+            return None
+        normal /= length
+        if np.abs((points - points[tri[0]]) @ normal).max() > 1e-6 * size:
+            return None
+        world_normal = np.linalg.inv(self.matrix[:3, :3]).T @ normal
+        world_normal /= np.linalg.norm(world_normal)
+        anchor = (self.matrix @ np.append(points[tri[0]] + self.triangles.center, 1.0))[:3]
+        return Sheet(anchor, world_normal, size)
+
+
+@dataclass(frozen=True)
+class Sheet:
+    """The world plane of a flat actor.
+
+    Attributes
+    ----------
+    anchor : numpy.ndarray
+        A world point of the plane.
+    normal : numpy.ndarray
+        Its unit normal (either side); zero for an actor with fewer than
+        three points, which has no surface at all.
+    size : float
+        The actor's largest extent, the scale of the flatness tolerance.
+    """
+
+    anchor: np.ndarray
+    normal: np.ndarray
+    size: float
 
 
 @dataclass(eq=False)

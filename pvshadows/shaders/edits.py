@@ -105,6 +105,9 @@ class ReceiverEdits:
         self.uniform_calls = 0
         #: Times an actor's replacements were worked out again.
         self.edited = 0
+        #: Actors brought up to date one by one (new or changed, or every actor when
+        #: the lights' lookups changed); the others take changed values by kind.
+        self.received = 0
 
     def update(
         self,
@@ -144,16 +147,28 @@ class ReceiverEdits:
         if same:
             self._send_changed(uniforms)
             return
+        # With the same lights, a receiver whose state is last frame's keeps its edits
+        # and takes only the uniform values that changed, with the others of its kind:
+        # a frame costs the actors that changed, not every receiver.
+        lights_kept = shadings == self._shadings and lit_points == self._lit_points
         fresh: dict[tuple, dict[str, object]] = {}
         touched = set()
         members: dict[tuple, list[vtk.vtkUniforms]] = {}
+        kept: dict[tuple, list[vtk.vtkUniforms]] = {}
         standing = []
         for state in snapshot.receivers:
             key = state.key()[0]
+            touched.add(key)
+            if lights_kept and key not in flagged and self._states.get(key) is state:
+                signature = self._signature_of[key]
+                members.setdefault(signature, []).append(self._uniforms[key])
+                kept.setdefault(signature, []).append(self._uniforms[key])
+                continue
             lights = [s.for_actor(key) for s in shadings]
             self._receive(state.actor, key, state, lights, True, flagged, uniforms, fresh)
             members.setdefault(self._signature_of[key], []).append(self._uniforms[key])
-            touched.add(key)
+        for signature, targets in kept.items():
+            fresh[signature] = self._send_to(signature, targets, uniforms, fresh.get(signature))
         for actor in snapshot.bystanders:
             key = actor.__this__
             touched.add(key)
@@ -195,6 +210,7 @@ class ReceiverEdits:
         fresh: dict[tuple, dict[str, object]],
     ) -> None:
         """Bring one receiver's edits and uniforms up to date (a full frame's path)."""
+        self.received += 1
         pbr = actor.GetProperty().GetInterpolation() == vtk.VTK_PBR
         signature = (triangles, *_signature(pbr, lights))
         if signature not in fresh:
@@ -231,18 +247,7 @@ class ReceiverEdits:
     def _send_changed(self, uniforms: dict[str, object]) -> None:
         """Set only the uniform values that changed, once converted per signature."""
         for signature, targets in self._members.items():
-            values = receiver_uniforms(self._lights_of[signature], uniforms)
-            previous = self._sent[signature]
-            if previous.keys() == values.keys():
-                changed = [n for n, v in values.items() if not _same(previous[n], v)]
-            else:
-                changed = list(values)
-            setters = [uniform_setter(name, values[name]) for name in changed]
-            for target in targets:
-                for setter in setters:
-                    setter(target)
-            self.uniform_calls += len(targets) * len(setters)
-            self._sent[signature] = values
+            self._sent[signature] = self._send_to(signature, targets, uniforms)
         probe = uniforms[PROBE_UNIFORM]
         if probe != self._probe:
             setter = uniform_setter(PROBE_UNIFORM, probe)
@@ -250,6 +255,31 @@ class ReceiverEdits:
                 setter(target)
             self.uniform_calls += len(self._standing)
             self._probe = probe
+
+    def _send_to(
+        self,
+        signature: tuple,
+        targets: list[vtk.vtkUniforms],
+        uniforms: dict[str, object],
+        values: dict[str, object] | None = None,
+    ) -> dict[str, object]:
+        """Give receivers of one signature the values that changed since last sent; return all.
+
+        ``values`` are the signature's values this frame when already converted.
+        """
+        if values is None:
+            values = receiver_uniforms(self._lights_of[signature], uniforms)
+        previous = self._sent[signature]
+        if previous.keys() == values.keys():
+            changed = [n for n, v in values.items() if not _same(previous[n], v)]
+        else:
+            changed = list(values)
+        setters = [uniform_setter(name, values[name]) for name in changed]
+        for target in targets:
+            for setter in setters:
+                setter(target)
+        self.uniform_calls += len(targets) * len(setters)
+        return values
 
     def _edits_of(self, actor: vtk.vtkActor, key: str) -> ShaderEdits:
         if key not in self._edits:
