@@ -1,5 +1,6 @@
 """A frame costs what changed: counted, not timed (the bench measures the time)."""
 
+import pytest
 import pyvista as pv
 
 from conftest import draw
@@ -65,6 +66,19 @@ def test_moving_one_actor_rereads_and_tests_that_actor_only():
     assert counted["edits"] == 1
     assert counted["received"] == 1  # the other receivers take changed uniforms by kind
     assert pl.shadows._renderers[0].snapshot.changed == {moved.__this__}
+
+
+def test_a_moved_actor_keeps_its_triangles_and_their_bounds():
+    """Only the eight corners of its model bounds move, not a pass over its points."""
+    pl, _ = crowd()
+    state = pl.shadows._renderers[0].snapshot.casters[1]
+    model_bounds = state.triangles.model_bounds()
+    state.actor.AddPosition(0.5, 0.0, 0.0)
+    draw(pl)
+    (moved,) = (s for s in pl.shadows._renderers[0].snapshot.casters if s.actor is state.actor)
+    assert moved is not state and moved.triangles is state.triangles
+    assert moved.triangles.model_bounds() is model_bounds
+    assert moved.bounds[:, 0] == pytest.approx(state.bounds[:, 0] + 0.5)
 
 
 def test_moving_the_light_tests_every_actor_once_and_runs_its_pass():

@@ -40,6 +40,7 @@ class ActorTriangles:
     data_mtime: int
     version: int = field(default=0)
     _closed_outward: bool | None = field(default=None, repr=False)
+    _model_bounds: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def n_triangles(self) -> int:
@@ -59,10 +60,19 @@ class ActorTriangles:
         return self._closed_outward
 
     def model_bounds(self) -> np.ndarray:
-        """Return the ``(2, 3)`` min/max corners in model coordinates."""
-        if self.points.shape[0] == 0:
-            return np.zeros((2, 3))
-        return np.stack([self.points.min(0), self.points.max(0)]) + self.center
+        """Return the ``(2, 3)`` min/max corners in model coordinates (computed once, read-only).
+
+        An actor that moves keeps its triangles, so its world bounds cost
+        eight corners, not a pass over its points.
+        """
+        if self._model_bounds is None:
+            if self.points.shape[0] == 0:
+                bounds = np.zeros((2, 3))
+            else:
+                bounds = np.stack([self.points.min(0), self.points.max(0)]) + self.center
+            bounds.setflags(write=False)
+            self._model_bounds = bounds
+        return self._model_bounds
 
 
 def vtk_id(obj: vtk.vtkObjectBase) -> str:
