@@ -674,7 +674,7 @@ class ShadowsComponent:
         if window is not None and not window.GetInitialized():
             window.SetStencilCapable(1)
         if settings.on_open == "raise":
-            from pvshadows.techniques.volume import require_closed
+            from pvshadows.techniques.volume_meshes import require_closed
 
             casters = []
             for renderer in self._plotter.renderers:

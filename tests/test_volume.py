@@ -265,7 +265,7 @@ def test_directional_fallback_hook(monkeypatch):
     with pytest.warns(UserWarning, match="actor 'bowl'.*from a map shadow map instead"):
         enable(pl)
     technique = pl.shadows._renderers[0].technique("volume")
-    assert technique._fallback("map").updated[0] == ["actor 'bowl'"]
+    assert technique._fallbacks.technique("map").updated[0] == ["actor 'bowl'"]
     plan = pl.shadows._renderers[0].plans[0]
     assert technique.shading(plan).visibility.endswith("* (pvsStub)")
 

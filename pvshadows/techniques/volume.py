@@ -29,209 +29,50 @@ Casters must be closed (:mod:`pvshadows.geometry.volume_casters`). An open caste
 either raises (``on_open="raise"``) or casts its shadow from a shadow map
 instead (``on_open="fallback"``): the light's visibility is then the volume
 mask times that map's lookup over the open casters only
-(:data:`FALLBACK_TECHNIQUES`).
+(:mod:`pvshadows.techniques.volume_fallback`). Preparing casters is
+:mod:`pvshadows.techniques.volume_meshes`; where the light stands against them
+(on a face, inside one) is :mod:`pvshadows.techniques.volume_light`.
 """
 
 from __future__ import annotations
 
 import time
-import warnings
-import weakref
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field
 from typing import ClassVar
 
 import numpy as np
 import pyvista as pv
 
 from pvshadows import _vtk as vtk
-from pvshadows.geometry.closed import OpenMeshError
 from pvshadows.geometry.silhouette import volume_geometry
-from pvshadows.geometry.volume_casters import (
-    VolumeMesh,
-    batches,
-    prepare_volume_mesh,
-    winding_number,
-)
+from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.gl.buffers import IndexedBuffers
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
 from pvshadows.model.plan import LightPlan
 from pvshadows.model.report import PassReport
 from pvshadows.passes.volume_stencil import DepthDraw, VolumeDraw, VolumePasses
 from pvshadows.pipeline.volume_zmode import choose_zmode
-from pvshadows.scene.lights import LightKind
 from pvshadows.scene.render_target import tiled_viewport
-from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.snapshot import ActorState
 from pvshadows.scene.triangles import ActorTriangles, vtk_id
 from pvshadows.shaders.shading import LightShading
-from pvshadows.techniques.base import FrameContext, Technique
-
-#: The technique that casts the shadows of open casters (``on_open="fallback"``),
-#: per kind of light. A name that is not (yet) a registered technique serving
-#: that kind of light leaves open casters without shadows from such lights,
-#: with a warning naming them.
-FALLBACK_TECHNIQUES = {
-    LightKind.POINT: "cubemap",
-    LightKind.SPOT: "cubemap",
-    LightKind.DIRECTIONAL: "map",
-}
+from pvshadows.techniques.base import FrameContext
+from pvshadows.techniques.volume_fallback import Fallback, OpenCasterFallbacks, combine_shadings
+from pvshadows.techniques.volume_light import (
+    enclosing_caster,
+    finite_reach,
+    holds_the_rest,
+    homogeneous_light,
+    off_surfaces,
+)
+from pvshadows.techniques.volume_meshes import (
+    HOW_COUNTED,
+    split_closed,
+    translucent_batches,
+)
 
 #: Colour of the volumes drawn by ``pl.shadows.show_volumes(True)``.
 OVERLAY_COLOUR = (1.0, 0.55, 0.1, 0.22)
-
-_HOW = {
-    "repaired": "a closed surface after repair (welding, rewinding or closing small holes)",
-    "two-sided sheet": "a two-sided slab of zero thickness (it is a flat open sheet)",
-}
-
-_PREPARED: dict[int, tuple[weakref.ref, VolumeMesh | OpenMeshError]] = {}
-
-
-def _reason(error: OpenMeshError) -> str:
-    return str(error).split("cannot be made closed: ", 1)[-1]
-
-
-def prepared_mesh(triangles: ActorTriangles, name: str) -> VolumeMesh:
-    """Return an actor's surface made ready for shadow volumes, once per version of its data.
-
-    Parameters
-    ----------
-    triangles : ActorTriangles
-        The actor's triangles (the result is kept as long as they live).
-    name : str
-        How messages name the actor.
-
-    Returns
-    -------
-    VolumeMesh
-        Closed and outward wound, in the frame of ``triangles.points``.
-
-    Raises
-    ------
-    OpenMeshError
-        When it is open and cannot be closed; the message names the actor.
-    """
-    entry = _PREPARED.get(id(triangles))
-    if entry is None or entry[0]() is not triangles:
-        try:
-            result: VolumeMesh | OpenMeshError = prepare_volume_mesh(
-                triangles.points, triangles.triangles, name
-            )
-        except OpenMeshError as error:
-            result = OpenMeshError(
-                f"{name} is not a closed surface and cannot be closed ({_reason(error)}), "
-                "so it cannot cast a shadow volume"
-            )
-        key = id(triangles)
-        _PREPARED[key] = (weakref.ref(triangles), result)
-        weakref.finalize(triangles, _PREPARED.pop, key, None)
-        entry = _PREPARED[key]
-    if isinstance(entry[1], OpenMeshError):
-        raise entry[1]
-    return entry[1]
-
-
-def require_closed(casters: list[tuple[str, ActorTriangles]]) -> None:
-    """Raise for the first caster that cannot cast a shadow volume (``on_open="raise"``).
-
-    Parameters
-    ----------
-    casters : list of (str, ActorTriangles)
-        Each caster's name and triangles.
-
-    Raises
-    ------
-    ValueError
-        Naming the actor and what is wrong, and what to do.
-    """
-    for name, triangles in casters:
-        try:
-            prepared_mesh(triangles, name)
-        except OpenMeshError as error:
-            msg = (
-                f"{error}. With on_open='raise' every caster of a volume light must be "
-                "closed: close the mesh, use on_open='fallback' (it then casts from a shadow "
-                "map), or pl.shadows.set_caster(actor, False)"
-            )
-            raise OpenMeshError(msg) from None
-
-
-def translucent_batches(
-    closed: list[tuple[ActorState, VolumeMesh]],
-) -> tuple[list[list[tuple]], list[float]]:
-    """Batch the closed casters: opaque ones together, each translucent one on its own.
-
-    Parameters
-    ----------
-    closed : list of tuple
-        ``(caster, volume mesh)`` in drawing order.
-
-    Returns
-    -------
-    batches : list of list of tuple
-        As :func:`pvshadows.geometry.volume_casters.batches`: opaque casters first.
-    passing : list of float
-        Per batch, the light its shadow lets through: 0 for opaque casters,
-        ``(1 - opacity)`` squared for a translucent closed caster (a shadow
-        ray crosses two of its surfaces), ``1 - opacity`` for a flat sheet.
-
-    Examples
-    --------
-    >>> from types import SimpleNamespace
-    >>> from pvshadows.techniques.volume import translucent_batches
-    >>> glass = SimpleNamespace(transmittance=0.5)
-    >>> stone = SimpleNamespace(transmittance=0.0)
-    >>> body = SimpleNamespace(n_bodies=1, how="closed")
-    >>> translucent_batches([(glass, body), (stone, body)])
-    ([[(1, 0, 1)], [(0, 0, 1)]], [0.0, 0.25])
-    """
-    through = [caster.transmittance for caster, _ in closed]
-    counts = [mesh.n_bodies for _, mesh in closed]
-    result = batches([c if t == 0.0 else 0 for c, t in zip(counts, through, strict=True)])
-    passing = [0.0] * len(result)
-    for number, (t, (_, mesh)) in enumerate(zip(through, closed, strict=True)):
-        if t > 0.0:
-            own = batches([0] * number + [counts[number]])
-            result += own
-            passing += [t if mesh.how == "two-sided sheet" else t * t] * len(own)
-    return result, passing
-
-
-def combine_shadings(first: LightShading, second: LightShading) -> LightShading:
-    """Return one light's shading whose visibility is the product of two.
-
-    Parameters
-    ----------
-    first, second : LightShading
-        Two lookups of the same light (e.g. a volume mask and a cube map).
-
-    Returns
-    -------
-    LightShading
-        Visibility ``(first) * (second)``; samplers merged, every other
-        field (sources, defines, ...) concatenated without repeats.
-
-    Examples
-    --------
-    >>> from pvshadows.shaders.shading import LightShading
-    >>> from pvshadows.techniques.volume import combine_shadings
-    >>> both = combine_shadings(LightShading(0, "a", sources=("x",)), LightShading(0, "b"))
-    >>> both.visibility, both.sources
-    ('(a) * (b)', ('x',))
-    """
-    merged = {}
-    for item in fields(LightShading):
-        a, b = getattr(first, item.name), getattr(second, item.name)
-        if item.name == "vtk_index":
-            merged[item.name] = a
-        elif item.name == "visibility":
-            merged[item.name] = f"({a}) * ({b})"
-        elif isinstance(a, tuple):
-            merged[item.name] = tuple(dict.fromkeys((*a, *b)))
-        elif isinstance(a, dict) or hasattr(a, "items"):
-            merged[item.name] = {**a, **b}
-        else:
-            merged[item.name] = a
-    return LightShading(**merged)
 
 
 @dataclass
@@ -250,60 +91,7 @@ class _LightState:
     frame: int = -1
     zmode: str = ""
     draws: list[VolumeDraw] = field(default_factory=list)
-    fallback: tuple[str, LightPlan] | None = None
-
-
-def _homogeneous_light(plan: LightPlan) -> np.ndarray:
-    """Return the light in world coordinates: (position, 1), or (direction towards it, 0)."""
-    assert plan.pose is not None
-    if plan.kind is LightKind.DIRECTIONAL:
-        return np.array([*(-plan.pose.direction), 0.0])
-    return np.array([*plan.pose.position, 1.0])
-
-
-#: A light this close to a caster's face plane (fraction of the caster's size) lies in it.
-ON_SURFACE = 1e-6
-#: How far such a light is moved off the face for its volumes (fraction of the caster's size).
-OFF_SURFACE = 1e-5
-
-
-def _off_surfaces(
-    light: np.ndarray, closed: list[tuple[ActorState, VolumeMesh]], notes: list[str]
-) -> np.ndarray:
-    """Move a point light lying in the plane of a caster's face a hair off it, outwards.
-
-    A face in the light's plane is neither lit nor unlit, and the silhouette
-    edges around it come out inconsistent: whole volumes go missing. Cast
-    from 1e-5 of the caster's size outside every such face, the shadows
-    differ from the exact ones by far less than a pixel.
-    """
-    if light[3] == 0.0:
-        return light
-    position = light[:3]
-    push = np.zeros(3)
-    for caster, mesh in closed:
-        lo, hi = caster.bounds
-        size = float(np.linalg.norm(hi - lo))
-        if np.any(position < lo - ON_SURFACE * size) or np.any(position > hi + ON_SURFACE * size):
-            continue
-        model = caster.model_matrix()
-        points = mesh.points @ model[:3, :3].T + model[:3, 3]
-        corners = points[mesh.triangles]
-        normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-        length = np.linalg.norm(normals, axis=1)
-        keep = length > 0.0
-        unit = normals[keep] / length[keep, None]
-        distance = np.einsum("ij,ij->i", unit, position - corners[keep, 0])
-        touching = np.abs(distance) <= ON_SURFACE * size
-        if touching.any():
-            notes.append(
-                f"the light lies in the plane of a face of {caster.name}: its volumes are cast "
-                f"from {OFF_SURFACE:g} of its size off that face"
-            )
-            push += OFF_SURFACE * size * unit[touching].sum(axis=0) / max(touching.sum(), 1)
-    if not push.any():
-        return light
-    return np.array([*(position + push), 1.0])
+    fallback: Fallback | None = None
 
 
 class VolumeTechnique:
@@ -326,8 +114,7 @@ class VolumeTechnique:
         self._cpu: dict[tuple[str, str], _CpuVolume] = {}
         self._depth_key: tuple | None = None
         self._depth_frame = -1
-        self._fallbacks: dict[str, Technique] = {}
-        self._warned: set[tuple] = set()
+        self._fallbacks = OpenCasterFallbacks(window)
         self._context: FrameContext | None = None
 
     # -- per light ------------------------------------------------------------------------
@@ -367,18 +154,18 @@ class VolumeTechnique:
             state = self._lights[light_id] = _LightState(MaskTexture(self._window, width, height))
         settings = plan.settings
         assert settings is not None and plan.pose is not None
-        closed, open_casters = self._split_casters(plan)
+        closed, open_casters = split_closed(plan)
         reports: list[PassReport] = []
-        state.fallback = self._plan_fallback(plan, open_casters)
-        light = _off_surfaces(_homogeneous_light(plan), closed, plan.notes)
-        enclosing = self._enclosing_caster(light, closed)
-        while enclosing is not None and _holds_the_rest(enclosing, closed, context.snapshot):
+        state.fallback = self._fallbacks.plan(plan, open_casters)
+        light = off_surfaces(homogeneous_light(plan), closed, plan.notes)
+        enclosing = enclosing_caster(light, closed)
+        while enclosing is not None and holds_the_rest(enclosing, closed, context.snapshot):
             plan.notes.append(
                 f"the light and every other receiver are inside {enclosing.name}: it shadows "
                 "none of them, so it casts no volume"
             )
             closed = [(c, m) for c, m in closed if c is not enclosing]
-            enclosing = self._enclosing_caster(light, closed)
+            enclosing = enclosing_caster(light, closed)
         if enclosing is not None:
             plan.notes.append(
                 f"the light is inside {enclosing.name}: everything outside it is in its shadow"
@@ -391,10 +178,10 @@ class VolumeTechnique:
                 reports.append(PassReport("shadow mask", "run", "all in shadow (light enclosed)"))
             else:
                 reports.append(PassReport("shadow mask", "reused", "light still enclosed"))
-            return reports + self._fallback_update(state, context)
+            return reports + self._fallbacks.update(state.fallback, context)
         for caster, mesh in closed:
             if mesh.how != "closed":
-                plan.notes.append(f"{caster.name} counted as {_HOW[mesh.how]}")
+                plan.notes.append(f"{caster.name} counted as {HOW_COUNTED[mesh.how]}")
         extrude = settings.extrude
         if extrude == "gpu" and not self._passes.can_extrude_on_gpu():
             extrude = "cpu"
@@ -422,11 +209,11 @@ class VolumeTechnique:
                     "mask still right",
                 )
             )
-            return reports + self._fallback_update(state, context)
+            return reports + self._fallbacks.update(state.fallback, context)
         if self._depth_frame != context.frame:
             reports.append(self._depth_pass(context, camera, width, height))
         plan_batches, passing = translucent_batches(closed)
-        reach = _finite_reach(context, light)
+        reach = finite_reach(context, light)
         if reach:
             plan.notes.append("parallel projection: volumes end beyond the scene, not at infinity")
         draws, built = self._volume_draws(
@@ -447,7 +234,7 @@ class VolumeTechnique:
         reports.append(record)
         state.key, state.frame, state.zmode = key, context.frame, zmode
         state.draws = [draw for batch in draws for draw in batch]
-        return reports + self._fallback_update(state, context)
+        return reports + self._fallbacks.update(state.fallback, context)
 
     def _ensure_target(self, width: int, height: int) -> None:
         if self._target is not None and self._target.size == (width, height):
@@ -459,92 +246,6 @@ class VolumeTechnique:
         self._lights.clear()
         self._target = VolumeTarget(self._window, width, height)
         self._depth_key, self._depth_frame = None, -1
-
-    def _split_casters(
-        self, plan: LightPlan
-    ) -> tuple[list[tuple[ActorState, VolumeMesh]], list[ActorState]]:
-        closed, open_casters = [], []
-        for caster in plan.casters:
-            if abs(np.linalg.det(caster.matrix[:3, :3])) == 0.0:
-                plan.notes.append(f"{caster.name} is scaled flat to nothing: it casts no shadow")
-                continue
-            try:
-                closed.append((caster, prepared_mesh(caster.triangles, caster.name)))
-            except OpenMeshError as error:
-                assert plan.settings is not None
-                if plan.settings.on_open == "raise":
-                    require_closed([(caster.name, caster.triangles)])
-                    raise error  # pragma: no cover - require_closed raised already
-                open_casters.append(caster)
-        return closed, open_casters
-
-    def _plan_fallback(
-        self, plan: LightPlan, open_casters: list[ActorState]
-    ) -> tuple[str, LightPlan] | None:
-        if not open_casters:
-            return None
-        from pvshadows.model.plan import SERVES
-        from pvshadows.techniques import TECHNIQUE_CLASSES
-
-        name = FALLBACK_TECHNIQUES.get(plan.kind)
-        usable = name in TECHNIQUE_CLASSES and plan.kind in SERVES.get(name, ())
-        names = ", ".join(c.name for c in open_casters)
-        if usable:
-            plan.notes.append(f"open casters cast from a {name} shadow map instead: {names}")
-        else:
-            plan.notes.append(
-                f"open casters cast no shadow from this {plan.kind.value} light "
-                f"(no shadow-map fallback for it yet): {names}"
-            )
-        for caster in open_casters:
-            warned = (vtk_id(caster.actor), caster.triangles.version, plan.kind, usable)
-            if warned in self._warned:
-                continue
-            self._warned.add(warned)
-            reason = _open_reason(caster)
-            then = (
-                f"it casts its shadow from a {name} shadow map instead"
-                if usable
-                else f"it casts no shadow from {plan.kind.value} lights until a shadow-map "
-                "fallback serves them"
-            )
-            warnings.warn(f"pvshadows: {reason}; {then}", stacklevel=2)
-        if not usable:
-            return None
-        assert name is not None
-        return name, replace(plan, casters=open_casters, technique=name, notes=[])
-
-    def _fallback_update(self, state: _LightState, context: FrameContext) -> list[PassReport]:
-        if state.fallback is None:
-            return []
-        name, subplan = state.fallback
-        technique = self._fallback(name)
-        reports = technique.update(subplan, context)
-        for report in reports:
-            report.name = f"fallback {report.name}"
-        return reports
-
-    def _fallback(self, name: str) -> Technique:
-        if name not in self._fallbacks:
-            from pvshadows.techniques import TECHNIQUE_CLASSES
-
-            self._fallbacks[name] = TECHNIQUE_CLASSES[name](self._window)
-        return self._fallbacks[name]
-
-    def _enclosing_caster(
-        self, light: np.ndarray, closed: list[tuple[ActorState, VolumeMesh]]
-    ) -> ActorState | None:
-        if light[3] == 0.0:
-            return None
-        position = light[:3]
-        for caster, mesh in closed:
-            lo, hi = caster.bounds
-            if np.any(position < lo) or np.any(position > hi) or mesh.how == "two-sided sheet":
-                continue
-            model = np.linalg.solve(caster.model_matrix(), np.append(position, 1.0))
-            if winding_number(mesh.points, mesh.triangles, model[:3] / model[3]) > 0.5:
-                return caster
-        return None
 
     def _depth_pass(
         self, context: FrameContext, camera: np.ndarray, width: int, height: int
@@ -750,7 +451,7 @@ class VolumeTechnique:
         if state.fallback is None:
             return own
         name, subplan = state.fallback
-        return combine_shadings(own, self._fallback(name).shading(subplan))
+        return combine_shadings(own, self._fallbacks.technique(name).shading(subplan))
 
     def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
         """Bind the light's mask and return the receivers' uniforms.
@@ -774,7 +475,7 @@ class VolumeTechnique:
         i = plan.vtk_index
         target = context.target()
         (x0, y0), (width, height) = target.origin, target.size
-        light_vc = context.view.light_in_view(_homogeneous_light(plan))
+        light_vc = context.view.light_in_view(homogeneous_light(plan))
         uniforms: dict[str, object] = {
             f"pvsMask{i}": state.mask.texture.GetTextureUnit(),
             f"pvsMaskViewport{i}": (float(x0), float(y0), float(width), float(height)),
@@ -782,15 +483,14 @@ class VolumeTechnique:
         }
         if state.fallback is not None:
             name, subplan = state.fallback
-            uniforms.update(self._fallback(name).activate(subplan, context))
+            uniforms.update(self._fallbacks.technique(name).activate(subplan, context))
         return uniforms
 
     def deactivate(self) -> None:
         """Free the texture units bound by :meth:`activate`."""
         for state in self._lights.values():
             state.mask.texture.Deactivate()
-        for technique in self._fallbacks.values():
-            technique.deactivate()
+        self._fallbacks.deactivate()
 
     def draw_debug(self, context: FrameContext) -> None:
         """Draw this frame's volumes translucent over the finished frame (``show_volumes``).
@@ -833,9 +533,7 @@ class VolumeTechnique:
             self._meshes.pop(mesh_key)[1].release()
         for cpu_key in [k for k in self._cpu if k[0] not in alive or k[1] not in casters]:
             self._cpu.pop(cpu_key).buffers.release()
-        fallback_plans = [s.fallback[1] for s in self._lights.values() if s.fallback]
-        for technique in self._fallbacks.values():
-            technique.keep_only(fallback_plans)
+        self._fallbacks.keep_only([s.fallback[1] for s in self._lights.values() if s.fallback])
         if not self._lights and self._target is not None:
             self._target.release()
             self._target = None
@@ -843,50 +541,11 @@ class VolumeTechnique:
     def release(self) -> None:
         """Release every framebuffer, mask, buffer and program."""
         self.keep_only([])
-        for technique in self._fallbacks.values():
-            technique.release()
-        self._fallbacks.clear()
+        self._fallbacks.release()
         self._passes.release()
-
-
-def _open_reason(caster: ActorState) -> str:
-    try:
-        prepared_mesh(caster.triangles, caster.name)
-    except OpenMeshError as error:
-        return str(error)
-    return f"{caster.name} is open"  # pragma: no cover
-
-
-def _finite_reach(context: FrameContext, light: np.ndarray) -> float:
-    """Return 0 (extrude to infinity), or how far to extrude for a parallel projection.
-
-    Far enough that every volume reaches past every actor: four times the
-    diagonal of the box around the actors and a positional light.
-    """
-    if not context.camera.GetParallelProjection():
-        return 0.0
-    boxes = [actor.bounds for actor in context.snapshot.actors]
-    if light[3] != 0.0:
-        boxes.append(np.stack([light[:3], light[:3]]))
-    corners = np.concatenate(boxes)
-    return 4.0 * max(float(np.linalg.norm(np.ptp(corners, axis=0))), 1e-300)
 
 
 def _projection(renderer: vtk.vtkRenderer) -> np.ndarray:
     camera = renderer.GetActiveCamera()
     matrix = camera.GetCompositeProjectionTransformMatrix(renderer.GetTiledAspectRatio(), -1, 1)
     return pv.array_from_vtkmatrix(matrix)
-
-
-def _holds_the_rest(
-    enclosing: ActorState, closed: list[tuple[ActorState, VolumeMesh]], snapshot: Snapshot
-) -> bool:
-    """Whether every receiver but ``enclosing`` lies inside it (a room around the scene)."""
-    mesh = next(m for c, m in closed if c is enclosing)
-    others = [r for r in snapshot.receivers if r is not enclosing]
-    inverse = np.linalg.inv(enclosing.model_matrix())
-    for receiver in others:
-        centre = inverse @ np.append(receiver.bounds.mean(axis=0), 1.0)
-        if winding_number(mesh.points, mesh.triangles, centre[:3] / centre[3]) < 0.5:
-            return False
-    return bool(others)
