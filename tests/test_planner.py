@@ -129,3 +129,33 @@ def test_auto_picks_planar_only_when_the_only_receiver_is_one_plane(light):
     assert report.technique == "planar"
     assert "the only receiver is one plane" in " ".join(report.notes)
     assert pl.shadows.measure(scene.light).misclassified <= 0.005
+
+
+def test_the_planner_decides_what_a_volume_light_casts_before_it_draws():
+    """Closed casters, open casters' fallback and z-pass or z-fail, from the plan alone."""
+    from pvshadows.pipeline.planner import plan_frame
+
+    def volume_plan(pl, light):
+        pl.shadows.enable(technique="volume")
+        snapshot = pl.shadows._reader.read(pl.renderer)
+        settings = pl.shadows.settings(light)
+        (plan,) = plan_frame(pl.renderer, snapshot, lambda _: settings)
+        assert plan.technique == "volume"
+        return plan
+
+    scene = standard_scene()
+    bowl = pv.Sphere(center=(3, -3, 1)).clip(normal="z", origin=(3, -3, 1))
+    bowl_actor = scene.plotter.add_mesh(bowl, name="bowl")
+    with pytest.warns(UserWarning, match="'bowl'.*cubemap shadow map instead"):
+        plan = volume_plan(scene.plotter, scene.light)
+    closed = [caster.actor for caster, _ in plan.volume.closed]
+    assert bowl_actor not in closed and len(closed) == 4
+    name, subplan = plan.volume.fallback
+    assert name == "cubemap" and [c.actor for c in subplan.casters] == [bowl_actor]
+    assert plan.volume.zmode == "zpass" and plan.volume.enclosing is None
+
+    in_the_box_shadow = [(-2.9, -0.35, 0.9), (-4.5, -0.5, 0.0), (0.0, 0.0, 1.0)]
+    inside = standard_scene(camera=in_the_box_shadow)
+    plan = volume_plan(inside.plotter, inside.light)
+    assert plan.volume.zmode == "zfail"
+    assert any(note.startswith("zfail: the camera may be inside") for note in plan.notes)

@@ -8,7 +8,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.snapshot import ActorState
@@ -22,6 +25,42 @@ SERVES = {
     "volume": (LightKind.POINT, LightKind.SPOT, LightKind.DIRECTIONAL),
     "planar": (LightKind.POINT, LightKind.SPOT, LightKind.DIRECTIONAL),
 }
+#: The technique that casts the shadows of a volume light's open casters
+#: (``on_open="fallback"``), per kind of light. A name that is not (yet) a
+#: registered technique serving that kind of light leaves open casters without
+#: shadows from such lights, with a warning naming them.
+FALLBACK_TECHNIQUES = {
+    LightKind.POINT: "cubemap",
+    LightKind.SPOT: "cubemap",
+    LightKind.DIRECTIONAL: "map",
+}
+
+
+@dataclass
+class VolumePlan:
+    """What a shadow-volume light casts in one frame, decided by the planner.
+
+    Attributes
+    ----------
+    closed : list of (ActorState, VolumeMesh)
+        The casters that cast volumes, with their closed meshes.
+    light : numpy.ndarray
+        The light the volumes are cast from, ``(position, 1)`` or
+        ``(direction towards it, 0)``, moved a hair off any face it lies in.
+    enclosing : ActorState or None
+        A closed caster that holds the light: everything outside it is in
+        its shadow, and nothing is counted.
+    zmode : str
+        ``"zpass"`` or ``"zfail"`` (``""`` when ``enclosing`` holds the light).
+    fallback : tuple of (str, LightPlan) or None
+        The shadow-map technique and its plan over the open casters only.
+    """
+
+    closed: list[tuple[ActorState, VolumeMesh]]
+    light: np.ndarray
+    enclosing: ActorState | None = None
+    zmode: str = ""
+    fallback: tuple[str, LightPlan] | None = None
 
 
 @dataclass
@@ -48,6 +87,8 @@ class LightPlan:
         The casters that can shadow a receiver for this light.
     notes : list of str
         Decisions in words.
+    volume : VolumePlan or None
+        For technique ``"volume"``, what it casts and how it counts.
     """
 
     light: vtk.vtkLight
@@ -59,3 +100,4 @@ class LightPlan:
     pose: LightPose | None = None
     casters: list[ActorState] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    volume: VolumePlan | None = None

@@ -64,6 +64,8 @@ class RendererShadows:
         self._warned: set[tuple[str, str]] = set()
         #: What each spot light reached, kept between frames (``reach.tests`` counts cone tests).
         self.reach = ReachCache()
+        #: Open casters of volume lights already warned about (one warning each).
+        self.warned_open: set[tuple] = set()
         self._window: vtk.vtkOpenGLRenderWindow | None = None
         self._timer: PassTimer | None = None
         self._buffers: ActorBuffers | None = None
@@ -126,7 +128,9 @@ class RendererShadows:
         snapshot = self._reader.read(renderer)
         view = FrameView.of(renderer)
         self._where = "planning"
-        plans = plan_frame(renderer, snapshot, self._settings_for, self.reach, view)
+        plans = plan_frame(
+            renderer, snapshot, self._settings_for, self.reach, view, self.warned_open
+        )
         context = FrameContext(
             self._window,
             renderer,

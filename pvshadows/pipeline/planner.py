@@ -23,6 +23,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.model.plan import AUTO_TECHNIQUE, SERVES, LightPlan
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.reach import ReachCache
+from pvshadows.pipeline.volume_plan import plan_volume
 from pvshadows.scene.culling import boxes_in_frustum
 from pvshadows.scene.light_kit import unshadowed_reason
 from pvshadows.scene.lights import LightKind, LightPose, casts_light, light_kind, light_pose
@@ -73,6 +74,7 @@ def plan_frame(
     settings_for: Callable[[vtk.vtkLight], ShadowSettings | None],
     reach: ReachCache | None = None,
     view: FrameView | None = None,
+    warned: set[tuple] | None = None,
 ) -> list[LightPlan]:
     """Plan every light of a renderer for this frame.
 
@@ -90,6 +92,9 @@ def plan_frame(
         actors and moved lights are tested again; a fresh one by default.
     view : FrameView, optional
         This frame's camera; built from the renderer by default.
+    warned : set of tuple, optional
+        Open casters of volume lights already warned about, kept between
+        frames so each warns once (:func:`pvshadows.pipeline.volume_plan.plan_volume`).
 
     Returns
     -------
@@ -101,6 +106,7 @@ def plan_frame(
     lights = renderer.GetLights()
     lights.InitTraversal()
     reach = ReachCache() if reach is None else reach
+    warned = set() if warned is None else warned
     casters = snapshot.casters
     view = FrameView.of(renderer) if view is None else view
     in_view = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
@@ -161,6 +167,8 @@ def plan_frame(
         if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
             plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
         plan.pose, plan.casters, plan.technique = pose, within, technique
+        if technique == "volume":
+            plan.volume = plan_volume(plan, renderer, snapshot, warned)
     reach.keep_only({vtk_id(plan.light) for plan in plans}, snapshot.actors)
     return plans
 

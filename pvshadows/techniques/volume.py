@@ -51,7 +51,6 @@ from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
 from pvshadows.model.plan import LightPlan
 from pvshadows.model.report import PassReport
 from pvshadows.passes.volume_stencil import DepthDraw, VolumeDraw, VolumePasses
-from pvshadows.pipeline.volume_zmode import choose_zmode
 from pvshadows.scene.render_target import tiled_viewport
 from pvshadows.scene.snapshot import ActorState
 from pvshadows.scene.triangles import ActorTriangles, vtk_id
@@ -59,15 +58,10 @@ from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.volume_fallback import Fallback, OpenCasterFallbacks, combine_shadings
 from pvshadows.techniques.volume_light import (
-    enclosing_caster,
     finite_reach,
-    holds_the_rest,
     homogeneous_light,
-    off_surfaces,
 )
 from pvshadows.techniques.volume_meshes import (
-    HOW_COUNTED,
-    split_closed,
     translucent_batches,
 )
 
@@ -132,13 +126,9 @@ class VolumeTechnique:
         Returns
         -------
         list of PassReport
-            The passes run, reused or skipped; ``plan.notes`` gets the
-            z-pass/z-fail decision and what happened to open casters.
-
-        Raises
-        ------
-        OpenMeshError
-            With ``on_open="raise"``, for a caster that is not closed.
+            The passes run, reused or skipped. What the light casts and how it
+            counts (closed casters, enclosing caster, z-pass or z-fail, open
+            casters' fallback) is the planner's :class:`~pvshadows.model.plan.VolumePlan`.
         """
         self._context = context
         width, height = context.viewport_size()
@@ -152,25 +142,13 @@ class VolumeTechnique:
         state = self._lights.get(light_id)
         if state is None:
             state = self._lights[light_id] = _LightState(MaskTexture(self._window, width, height))
-        settings = plan.settings
-        assert settings is not None and plan.pose is not None
-        closed, open_casters = split_closed(plan)
+        settings, volume = plan.settings, plan.volume
+        assert settings is not None and plan.pose is not None and volume is not None
+        closed, light, zmode = volume.closed, volume.light, volume.zmode
         reports: list[PassReport] = []
-        state.fallback = self._fallbacks.plan(plan, open_casters)
-        light = off_surfaces(homogeneous_light(plan), closed, plan.notes)
-        enclosing = enclosing_caster(light, closed)
-        while enclosing is not None and holds_the_rest(enclosing, closed, context.snapshot):
-            plan.notes.append(
-                f"the light and every other receiver are inside {enclosing.name}: it shadows "
-                "none of them, so it casts no volume"
-            )
-            closed = [(c, m) for c, m in closed if c is not enclosing]
-            enclosing = enclosing_caster(light, closed)
-        if enclosing is not None:
-            plan.notes.append(
-                f"the light is inside {enclosing.name}: everything outside it is in its shadow"
-            )
-            key: tuple = ("inside", plan.pose.key(), enclosing.key())
+        state.fallback = volume.fallback
+        if volume.enclosing is not None:
+            key: tuple = ("inside", plan.pose.key(), volume.enclosing.key())
             if key != state.key:
                 assert self._target is not None
                 self._passes.fill(self._target, state.mask, 0.0)
@@ -179,17 +157,10 @@ class VolumeTechnique:
             else:
                 reports.append(PassReport("shadow mask", "reused", "light still enclosed"))
             return reports + self._fallbacks.update(state.fallback, context)
-        for caster, mesh in closed:
-            if mesh.how != "closed":
-                plan.notes.append(f"{caster.name} counted as {HOW_COUNTED[mesh.how]}")
         extrude = settings.extrude
         if extrude == "gpu" and not self._passes.can_extrude_on_gpu():
             extrude = "cpu"
             plan.notes.append("the extruding geometry shader does not compile here: cpu extrusion")
-        zmode, why = choose_zmode(
-            settings.zmode, light, context.renderer, [(c.name, c.bounds) for c, _ in closed]
-        )
-        plan.notes.append(f"{zmode}: {why}")
         camera = _projection(context.renderer)
         key = (
             plan.pose.key(),

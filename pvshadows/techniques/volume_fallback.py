@@ -1,33 +1,20 @@
 """Open casters of a volume light cast from a shadow map instead (``on_open="fallback"``).
 
-The light's visibility is then its volume mask times the fallback map's
-lookup over the open casters only.
+The planner chooses the map (:data:`pvshadows.model.plan.FALLBACK_TECHNIQUES`);
+here live the techniques that draw it, one per name and window. The light's
+visibility is then its volume mask times the fallback map's lookup over the
+open casters only.
 """
 
 from __future__ import annotations
 
-import warnings
-from dataclasses import fields, replace
+from dataclasses import fields
 
 from pvshadows import _vtk as vtk
 from pvshadows.model.plan import LightPlan
 from pvshadows.model.report import PassReport
-from pvshadows.scene.lights import LightKind
-from pvshadows.scene.snapshot import ActorState
-from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, Technique
-from pvshadows.techniques.volume_meshes import open_reason
-
-#: The technique that casts the shadows of open casters (``on_open="fallback"``),
-#: per kind of light. A name that is not (yet) a registered technique serving
-#: that kind of light leaves open casters without shadows from such lights,
-#: with a warning naming them.
-FALLBACK_TECHNIQUES = {
-    LightKind.POINT: "cubemap",
-    LightKind.SPOT: "cubemap",
-    LightKind.DIRECTIONAL: "map",
-}
 
 
 def combine_shadings(first: LightShading, second: LightShading) -> LightShading:
@@ -84,56 +71,6 @@ class OpenCasterFallbacks:
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
         self._fallbacks: dict[str, Technique] = {}
-        self._warned: set[tuple] = set()
-
-    def plan(self, plan: LightPlan, open_casters: list[ActorState]) -> Fallback | None:
-        """Plan the shadow map that casts a volume light's open casters; warn once per caster.
-
-        Parameters
-        ----------
-        plan : LightPlan
-            The volume light's plan (its notes say what happens).
-        open_casters : list of ActorState
-            Its casters that cannot cast volumes.
-
-        Returns
-        -------
-        tuple of (str, LightPlan) or None
-            The fallback technique's name and its plan over the open casters
-            only; ``None`` when there are none or no technique serves the light.
-        """
-        if not open_casters:
-            return None
-        from pvshadows.model.plan import SERVES
-        from pvshadows.techniques import TECHNIQUE_CLASSES
-
-        name = FALLBACK_TECHNIQUES.get(plan.kind)
-        usable = name in TECHNIQUE_CLASSES and plan.kind in SERVES.get(name, ())
-        names = ", ".join(c.name for c in open_casters)
-        if usable:
-            plan.notes.append(f"open casters cast from a {name} shadow map instead: {names}")
-        else:
-            plan.notes.append(
-                f"open casters cast no shadow from this {plan.kind.value} light "
-                f"(no shadow-map fallback for it yet): {names}"
-            )
-        for caster in open_casters:
-            warned = (vtk_id(caster.actor), caster.triangles.version, plan.kind, usable)
-            if warned in self._warned:
-                continue
-            self._warned.add(warned)
-            reason = open_reason(caster)
-            then = (
-                f"it casts its shadow from a {name} shadow map instead"
-                if usable
-                else f"it casts no shadow from {plan.kind.value} lights until a shadow-map "
-                "fallback serves them"
-            )
-            warnings.warn(f"pvshadows: {reason}; {then}", stacklevel=2)
-        if not usable:
-            return None
-        assert name is not None
-        return name, replace(plan, casters=open_casters, technique=name, notes=[])
 
     def update(self, fallback: Fallback | None, context: FrameContext) -> list[PassReport]:
         """Bring a fallback's map up to date; its passes are reported as ``fallback ...``."""

@@ -1,0 +1,121 @@
+"""What a shadow-volume light casts this frame, decided before it draws.
+
+For a light whose technique is ``"volume"``, the planner sorts its casters
+into closed ones (which cast volumes) and open ones (which raise, or cast
+from a shadow map: :data:`pvshadows.model.plan.FALLBACK_TECHNIQUES`), moves
+the light a hair off any caster face it lies in, finds a closed caster that
+holds the light (a room around the light and every other receiver shadows
+none of them and is dropped; any other holds everything outside it in
+shadow) and chooses z-pass or z-fail
+(:func:`pvshadows.pipeline.volume_zmode.choose_zmode`). The technique then
+only counts what the plan says.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import replace
+
+from pvshadows import _vtk as vtk
+from pvshadows.model.plan import FALLBACK_TECHNIQUES, SERVES, LightPlan, VolumePlan
+from pvshadows.pipeline.volume_zmode import choose_zmode
+from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.triangles import vtk_id
+from pvshadows.techniques import TECHNIQUE_CLASSES
+from pvshadows.techniques.volume_light import (
+    enclosing_caster,
+    holds_the_rest,
+    homogeneous_light,
+    off_surfaces,
+)
+from pvshadows.techniques.volume_meshes import HOW_COUNTED, open_reason, split_closed
+
+
+def plan_volume(
+    plan: LightPlan, renderer: vtk.vtkRenderer, snapshot: Snapshot, warned: set[tuple]
+) -> VolumePlan:
+    """Decide what a volume light casts this frame; say it in ``plan.notes``.
+
+    Parameters
+    ----------
+    plan : LightPlan
+        The light's plan, technique ``"volume"``, with its pose, settings
+        and casters.
+    renderer : vtk.vtkRenderer
+        The renderer (its camera decides z-pass or z-fail).
+    snapshot : Snapshot
+        This frame's actors.
+    warned : set of tuple
+        Open casters already warned about, kept between frames (one warning
+        per caster, version of its data, kind of light and outcome).
+
+    Returns
+    -------
+    VolumePlan
+        Closed casters, the light they are cast from, an enclosing caster,
+        the counting and the open casters' fallback.
+
+    Raises
+    ------
+    OpenMeshError
+        With ``on_open="raise"``, naming the first open caster.
+    """
+    assert plan.settings is not None and plan.pose is not None
+    closed, open_casters = split_closed(plan)
+    fallback = _fallback(plan, open_casters, warned)
+    light = off_surfaces(homogeneous_light(plan), closed, plan.notes)
+    enclosing = enclosing_caster(light, closed)
+    while enclosing is not None and holds_the_rest(enclosing, closed, snapshot):
+        plan.notes.append(
+            f"the light and every other receiver are inside {enclosing.name}: it shadows "
+            "none of them, so it casts no volume"
+        )
+        closed = [(c, m) for c, m in closed if c is not enclosing]
+        enclosing = enclosing_caster(light, closed)
+    if enclosing is not None:
+        plan.notes.append(
+            f"the light is inside {enclosing.name}: everything outside it is in its shadow"
+        )
+        return VolumePlan(closed, light, enclosing, "", fallback)
+    for caster, mesh in closed:
+        if mesh.how != "closed":
+            plan.notes.append(f"{caster.name} counted as {HOW_COUNTED[mesh.how]}")
+    zmode, why = choose_zmode(
+        plan.settings.zmode, light, renderer, [(c.name, c.bounds) for c, _ in closed]
+    )
+    plan.notes.append(f"{zmode}: {why}")
+    return VolumePlan(closed, light, None, zmode, fallback)
+
+
+def _fallback(
+    plan: LightPlan, open_casters: list[ActorState], warned: set[tuple]
+) -> tuple[str, LightPlan] | None:
+    """Plan the shadow map that casts a volume light's open casters; warn once per caster."""
+    if not open_casters:
+        return None
+    name = FALLBACK_TECHNIQUES.get(plan.kind)
+    usable = name in TECHNIQUE_CLASSES and plan.kind in SERVES.get(name, ())
+    names = ", ".join(c.name for c in open_casters)
+    if usable:
+        plan.notes.append(f"open casters cast from a {name} shadow map instead: {names}")
+    else:
+        plan.notes.append(
+            f"open casters cast no shadow from this {plan.kind.value} light "
+            f"(no shadow-map fallback for it yet): {names}"
+        )
+    for caster in open_casters:
+        key = (vtk_id(caster.actor), caster.triangles.version, plan.kind, usable)
+        if key in warned:
+            continue
+        warned.add(key)
+        then = (
+            f"it casts its shadow from a {name} shadow map instead"
+            if usable
+            else f"it casts no shadow from {plan.kind.value} lights until a shadow-map "
+            "fallback serves them"
+        )
+        warnings.warn(f"pvshadows: {open_reason(caster)}; {then}", stacklevel=2)
+    if not usable:
+        return None
+    assert name is not None
+    return name, replace(plan, casters=open_casters, technique=name, notes=[], volume=None)
