@@ -159,3 +159,23 @@ def test_the_planner_decides_what_a_volume_light_casts_before_it_draws():
     plan = volume_plan(inside.plotter, inside.light)
     assert plan.volume.zmode == "zfail"
     assert any(note.startswith("zfail: the camera may be inside") for note in plan.notes)
+
+
+def test_the_planner_chooses_the_receiving_plane_of_planar_lights():
+    from pvshadows.pipeline.planner import plan_frame
+
+    scene = standard_scene()
+    pl = scene.plotter
+    pl.shadows.enable(technique="planar")
+    settings = pl.shadows.settings(scene.light)
+
+    def planned():
+        snapshot = pl.shadows._reader.read(pl.renderer)
+        (plan,) = plan_frame(pl.renderer, snapshot, lambda _: settings)
+        assert plan.technique == "planar" and plan.plane.actor.actor is pl.actors["ground"]
+        assert plan.plane.reason in plan.notes
+        return plan.plane.reason
+
+    assert planned() == "receiving plane: actor 'ground' (found on its own)"
+    pl.shadows.set_receiver(pl.actors["ground"], plane=True)
+    assert planned().endswith("(named with set_receiver(plane=True))")

@@ -14,6 +14,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.lights import LightKind, LightPose
+from pvshadows.scene.planes import PlaneChoice
 from pvshadows.scene.snapshot import ActorState
 
 #: Technique ``"auto"`` picks for each kind of light.
@@ -89,6 +90,8 @@ class LightPlan:
         Decisions in words.
     volume : VolumePlan or None
         For technique ``"volume"``, what it casts and how it counts.
+    plane : PlaneChoice or None
+        For technique ``"planar"``, the receiving plane (or none, and why).
     """
 
     light: vtk.vtkLight
@@ -101,3 +104,4 @@ class LightPlan:
     casters: list[ActorState] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     volume: VolumePlan | None = None
+    plane: PlaneChoice | None = None

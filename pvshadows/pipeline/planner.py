@@ -27,7 +27,7 @@ from pvshadows.pipeline.volume_plan import plan_volume
 from pvshadows.scene.culling import boxes_in_frustum
 from pvshadows.scene.light_kit import unshadowed_reason
 from pvshadows.scene.lights import LightKind, LightPose, casts_light, light_kind, light_pose
-from pvshadows.scene.planes import sole_plane
+from pvshadows.scene.planes import PlaneChoice, choose_plane, sole_plane
 from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.scene.view import FrameView
@@ -112,6 +112,7 @@ def plan_frame(
     in_view = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
     seen = [r for r, shown in zip(snapshot.receivers, in_view, strict=True) if shown]
     only_a_plane = sole_plane(snapshot.receivers) is not None
+    plane: PlaneChoice | None = None  # the receiving plane of planar lights, chosen once
     for index in range(lights.GetNumberOfItems()):
         light = lights.GetNextItem()
         plan = LightPlan(light, index, vtk_index, light_kind(light), settings_for(light))
@@ -169,6 +170,11 @@ def plan_frame(
         plan.pose, plan.casters, plan.technique = pose, within, technique
         if technique == "volume":
             plan.volume = plan_volume(plan, renderer, snapshot, warned)
+        elif technique == "planar":
+            if plane is None:
+                plane = choose_plane(snapshot.receivers)
+            plan.plane = plane
+            plan.notes.append(plane.reason)
     reach.keep_only({vtk_id(plan.light) for plan in plans}, snapshot.actors)
     return plans
 

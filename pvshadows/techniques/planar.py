@@ -3,7 +3,7 @@
 The cheapest technique, for every kind of light, and exact on the plane it
 serves. Per frame and light:
 
-1. the receiving plane is chosen (:func:`pvshadows.scene.planes.choose_plane`):
+1. the planner chooses the receiving plane (:func:`pvshadows.scene.planes.choose_plane`):
    an actor named with ``pl.shadows.set_receiver(actor, plane=True)``, or
    else a flat receiver found on its own (the largest, if several), and
    oriented so that the light is on its positive side;
@@ -40,7 +40,7 @@ from pvshadows.model.plan import LightPlan
 from pvshadows.model.report import PassReport
 from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
 from pvshadows.scene.lights import LightKind
-from pvshadows.scene.planes import PlaneChoice, choose_plane, facing, flattening
+from pvshadows.scene.planes import PlaneChoice, facing, flattening
 from pvshadows.scene.snapshot import ActorState
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
@@ -254,12 +254,12 @@ class PlanarTechnique:
         Returns
         -------
         list of PassReport
-            The mask pass, run, reused or skipped; ``plan.notes`` gets which
-            plane receives and why.
+            The mask pass, run, reused or skipped. The receiving plane is the
+            planner's (``plan.plane``).
         """
         receivers = context.snapshot.receivers
-        choice = choose_plane(receivers)
-        plan.notes.append(choice.reason)
+        choice = plan.plane
+        assert choice is not None  # the planner chose the plane
         width, height = context.viewport_size()
         if width < 1 or height < 1:
             state = self._lights.pop(vtk_id(plan.light), None)
