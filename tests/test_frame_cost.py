@@ -4,7 +4,8 @@ import pytest
 import pyvista as pv
 
 from conftest import draw
-from pvshadows.tools.scenes import crowd_scene
+from pvshadows.scene.triangles import vtk_id
+from pvshadows.tools.scenes import crowd_scene, standard_scene
 
 
 def counters(pl):
@@ -108,3 +109,23 @@ def test_changed_property_rereads_that_actor():
     assert change(before, counters(pl))["reread"] == 1
     assert [s.actor for s in snapshot.receivers] == [ground]
     assert snapshot.bystanders == [box]
+
+
+def test_a_sun_reads_its_actors_once_while_only_the_camera_moves():
+    """The fit's light-space boxes follow the light and actors; only the view is redone."""
+    scene = standard_scene(window_size=(320, 240), light="directional")
+    pl = scene.plotter
+    pl.shadows.enable(technique="map", filter="hard")
+    draw(pl)
+    state = pl.shadows._renderers[0].technique("map")._states[vtk_id(scene.light)]
+    read = state.sun_actors[2]
+    assert read is not None and len(read.receivers) == 4
+    assert len(read.casters) == 3  # the ground, flat and under the others, shadows nothing
+    for _ in range(3):
+        pl.camera.Azimuth(10)
+        draw(pl)
+        assert state.sun_actors[2] is read
+    assert pl.shadows.measure(scene.light).misclassified <= 0.01
+    scene.light.position = (4.0, 2.0, 8.0)
+    draw(pl)
+    assert state.sun_actors[2] is not read

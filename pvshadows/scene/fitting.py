@@ -304,21 +304,32 @@ def sun_rotation(pose: LightPose) -> np.ndarray:
     return rotation
 
 
-def sun_fit(
-    pose: LightPose,
-    actors: list[ActorState],
-    camera: vtk.vtkCamera,
-    aspect: float,
-    resolution: int,
-) -> SunFit | None:
-    """Fit a directional light's map to the casters that can shadow a visible receiver.
+@dataclass(frozen=True)
+class SunActors:
+    """What a directional light's fit reads of the actors, in the light's axes.
 
-    The region across the light is what the camera sees of the receivers,
-    cut down to the casters over it; a flat caster (a ground) with every
-    other receiver on its lit side shadows nothing and does not widen it.
-    The region's size is rounded up to one of ``SIZE_STEPS_PER_OCTAVE`` sizes
-    per octave and its centre snapped to the map's texels, so shadow edges
-    stay put while only the camera moves.
+    It stays right while the light and the actors do, however the camera
+    moves (see :func:`sun_actors`).
+
+    Attributes
+    ----------
+    rotation : numpy.ndarray
+        ``(4, 4)`` rotation from world axes to light axes.
+    receivers : numpy.ndarray
+        ``(n, 2, 3)`` the receivers' boxes in light axes.
+    casters : numpy.ndarray
+        ``(m, 2, 3)`` in light axes, the boxes of the casters that can shadow
+        a receiver: a flat caster (a ground) with every other receiver on its
+        lit side is left out.
+    """
+
+    rotation: np.ndarray
+    receivers: np.ndarray
+    casters: np.ndarray
+
+
+def sun_actors(pose: LightPose, actors: list[ActorState]) -> SunActors | None:
+    """Return what a directional light's fit reads of the actors (``None`` if it can cast nothing).
 
     Parameters
     ----------
@@ -326,6 +337,46 @@ def sun_fit(
         The directional light.
     actors : list of ActorState
         The renderer's actors this frame.
+
+    Returns
+    -------
+    SunActors or None
+        ``None`` without a receiver or a caster that can shadow one.
+    """
+    rotation = sun_rotation(pose)
+    casters = [a for a in actors if a.caster]
+    receivers = [a for a in actors if a.receiver]
+    if not casters or not receivers:
+        return None
+    corners = _sheet_corners(casters, receivers)
+    shadowing = [
+        c.bounds for c in casters if not _flat_and_lit_above(c, pose.direction, receivers, corners)
+    ]
+    if not shadowing:
+        return None
+    return SunActors(
+        rotation,
+        _light_boxes(rotation, np.array([a.bounds for a in receivers])),
+        _light_boxes(rotation, np.array(shadowing)),
+    )
+
+
+def sun_fit(
+    actors: SunActors, camera: vtk.vtkCamera, aspect: float, resolution: int
+) -> SunFit | None:
+    """Fit a directional light's map to the casters that can shadow a visible receiver.
+
+    The region across the light is what the camera sees of the receivers,
+    cut down to the casters over it (:func:`sun_actors` has already left out
+    a flat caster with every other receiver on its lit side). The region's
+    size is rounded up to one of ``SIZE_STEPS_PER_OCTAVE`` sizes per octave
+    and its centre snapped to the map's texels, so shadow edges stay put
+    while only the camera moves.
+
+    Parameters
+    ----------
+    actors : SunActors
+        The light's receivers and casters in its axes.
     camera : vtk.vtkCamera
         The camera.
     aspect : float
@@ -338,33 +389,23 @@ def sun_fit(
     SunFit or None
         ``None`` when no caster can shadow a visible receiver.
     """
-    rotation = sun_rotation(pose)
-    casters = [a for a in actors if a.caster]
-    receivers = [a for a in actors if a.receiver]
-    if not casters or not receivers:
-        return None
-    receiver_boxes = np.array([a.bounds for a in receivers])
+    rotation = actors.rotation
     view = _view_corners(camera, aspect) @ rotation[:3, :3].T
     view_lo, view_hi = view.min(axis=0), view.max(axis=0)
-    seen = _light_boxes(rotation, receiver_boxes)
+    seen = actors.receivers
     lo = np.maximum(seen[:, 0, :2], view_lo[:2])
     hi = np.minimum(seen[:, 1, :2], view_hi[:2])
     visible = np.all(lo <= hi, axis=1)
     if not visible.any():
         return None
     region_lo, region_hi = lo[visible].min(axis=0), hi[visible].max(axis=0)
-    caster_boxes = _light_boxes(rotation, np.array([a.bounds for a in casters]))
-    corners = _sheet_corners(casters, receivers)
-    relevant = []
-    for state, box in zip(casters, caster_boxes, strict=True):
-        if np.any(box[1, :2] < region_lo) or np.any(box[0, :2] > region_hi):
-            continue
-        if _flat_and_lit_above(state, pose.direction, receivers, corners):
-            continue
-        relevant.append(box)
-    if not relevant:
+    boxes = actors.casters
+    over = np.all(boxes[:, 1, :2] >= region_lo, axis=1) & np.all(
+        boxes[:, 0, :2] <= region_hi, axis=1
+    )
+    if not over.any():
         return None
-    boxes = np.array(relevant)
+    boxes = boxes[over]
     fit_lo = np.maximum(boxes[:, 0, :2].min(axis=0), region_lo)
     fit_hi = np.minimum(boxes[:, 1, :2].max(axis=0), region_hi)
     size = float(max(np.max(fit_hi - fit_lo), 1e-30))

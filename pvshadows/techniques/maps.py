@@ -24,7 +24,14 @@ from pvshadows.model.report import PassReport
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.passes.map_depth import MapCaster, MapDepthPass
 from pvshadows.passes.transmittance import TranslucentCaster
-from pvshadows.scene.fitting import SunFit, spot_fit, spot_shadowing_casters, sun_fit, sun_rotation
+from pvshadows.scene.fitting import (
+    SunFit,
+    spot_fit,
+    spot_shadowing_casters,
+    sun_actors,
+    sun_fit,
+    sun_rotation,
+)
 from pvshadows.scene.lights import LightKind
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
@@ -56,6 +63,7 @@ class MapState:
     range: tuple[float, float] = (0.0, 1.0)
     range_snapshot: object = None
     texel: float = 1.0
+    sun_actors: tuple | None = None
     fit_key: tuple | None = None
     fitted: SunFit | None = None
     casters_of: tuple | None = None
@@ -167,11 +175,18 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         pose, settings = plan.pose, plan.settings
         assert pose is not None and settings is not None
         actors = context.snapshot.actors
-        # The fit depends on the light, the actors and the view: the same three give the same fit.
+        # What the fit reads of the actors follows the light and the actors; the fit itself
+        # the view too: the same ones give the same answers.
+        kept = state.sun_actors
+        if kept is None or kept[0] != pose.key() or kept[1] is not actors:
+            kept = state.sun_actors = (pose.key(), actors, sun_actors(pose, actors))
+        seen_by_sun = kept[2]
         fit_key = (pose.key(), settings.resolution, context.view.world_to_clip.tobytes())
         if state.fit_key is None or state.fit_key[0] != fit_key or state.fit_key[1] is not actors:
-            state.fitted = sun_fit(
-                pose, actors, context.camera, context.view.aspect, settings.resolution
+            state.fitted = (
+                None
+                if seen_by_sun is None
+                else sun_fit(seen_by_sun, context.camera, context.view.aspect, settings.resolution)
             )
             state.fit_key = (fit_key, actors)
         fit: SunFit | None = state.fitted
