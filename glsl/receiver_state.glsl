@@ -21,3 +21,19 @@ vec3 pvsFacetVC = vec3(0.0);
 PVS_LIGHTS(PVS_LIGHT_STATE)
 #undef PVS_LIGHT_STATE
 #undef PVS_LIGHTS
+
+// The facet normal in view coordinates from screen-space derivatives of the
+// view position; the top of main() stores it in pvsFacetVC.
+vec3 pvsFacetNormal(vec3 positionVC)
+{
+  return cross(dFdx(positionVC), dFdy(positionVC));
+}
+
+// The share of a shadowed light's diffuse and specular terms a receiver keeps:
+// 1 - strength * (1 - visibility). In a probe frame of this light
+// (pvsProbeLight == light) the visibility is what the frame shows.
+float pvsKeptShare(float visibility, int light, float strength)
+{
+  if (pvsProbeLight == light) { pvsProbe = visibility; }
+  return 1.0 - strength * (1.0 - visibility);
+}

@@ -41,7 +41,7 @@ _VIEW_POSITION = "vec4 vertexVC = vertexVCVSOutput;"
 _PROBE_ANCHOR = "//VTK::Picking::Impl"
 #: Where GLSL extension directives go: before any code (VTK puts ``#version`` there).
 _SYSTEM = "//VTK::System::Dec"
-_FACET_NORMAL = "\n  pvsFacetVC = cross(dFdx(vertexVC.xyz), dFdy(vertexVC.xyz));"
+_FACET_NORMAL = "\n  pvsFacetVC = pvsFacetNormal(vertexVC.xyz);"
 
 
 @dataclass(frozen=True)
@@ -163,8 +163,7 @@ def _light_hooks(
     compute = (
         (f"pvsLookupMaps(vertexVC.xyz, {normal});\n  " if lookup_maps else "")
         + f"pvsVisibility{i} = {visibility};\n"
-        f"  if ({PROBE_UNIFORM} == {i}) {{ pvsProbe = pvsVisibility{i}; }}\n"
-        f"  pvsKept{i} = 1.0 - {strength_uniform(i)} * (1.0 - pvsVisibility{i});\n"
+        f"  pvsKept{i} = pvsKeptShare(pvsVisibility{i}, {i}, {strength_uniform(i)});\n"
     )
     if pbr:
         return [
