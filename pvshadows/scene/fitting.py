@@ -13,7 +13,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import look_rotation, perspective, translation
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import ActorState
@@ -240,13 +239,9 @@ def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     return np.stack([rotated.min(axis=1), rotated.max(axis=1)], axis=1)
 
 
-def _view_corners(camera: vtk.vtkCamera, aspect: float) -> np.ndarray:
-    matrix = camera.GetCompositeProjectionTransformMatrix(aspect, -1, 1)
-    inverse = np.linalg.inv(
-        np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
-    )
+def _view_corners(world_to_clip: np.ndarray) -> np.ndarray:
     ndc = np.array([[x, y, z, 1.0] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
-    world = ndc @ inverse.T
+    world = ndc @ np.linalg.inv(world_to_clip).T
     return world[:, :3] / world[:, 3:4]
 
 
@@ -361,9 +356,7 @@ def sun_actors(pose: LightPose, actors: list[ActorState]) -> SunActors | None:
     )
 
 
-def sun_fit(
-    actors: SunActors, camera: vtk.vtkCamera, aspect: float, resolution: int
-) -> SunFit | None:
+def sun_fit(actors: SunActors, world_to_clip: np.ndarray, resolution: int) -> SunFit | None:
     """Fit a directional light's map to the casters that can shadow a visible receiver.
 
     The region across the light is what the camera sees of the receivers,
@@ -377,10 +370,9 @@ def sun_fit(
     ----------
     actors : SunActors
         The light's receivers and casters in its axes.
-    camera : vtk.vtkCamera
-        The camera.
-    aspect : float
-        The renderer's aspect ratio.
+    world_to_clip : numpy.ndarray
+        ``(4, 4)`` the camera's world-to-clip matrix
+        (:attr:`pvshadows.scene.view.FrameView.world_to_clip`).
     resolution : int
         Texels per side.
 
@@ -390,7 +382,7 @@ def sun_fit(
         ``None`` when no caster can shadow a visible receiver.
     """
     rotation = actors.rotation
-    view = _view_corners(camera, aspect) @ rotation[:3, :3].T
+    view = _view_corners(world_to_clip) @ rotation[:3, :3].T
     view_lo, view_hi = view.min(axis=0), view.max(axis=0)
     seen = actors.receivers
     lo = np.maximum(seen[:, 0, :2], view_lo[:2])

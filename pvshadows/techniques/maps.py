@@ -145,8 +145,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         range_key = (pose.key(), settings.resolution, keys or tuple(c.key() for c in ranged))
         if range_key != state.range_key or state.range_snapshot is not context.snapshot:
             nearest, far = distance_range(pose.position, ranged)
-            receivers = [a for a in context.snapshot.actors if a.receiver]
-            shadowing = spot_shadowing_casters(pose, inside, receivers)
+            shadowing = spot_shadowing_casters(pose, inside, context.snapshot.receivers)
             boxes = np.array([c.bounds for c in shadowing]).reshape(-1, 2, 3)
             fit = spot_fit(pose, settings.resolution, far * 1e-4, far, boxes)
             state.range_key, state.range = range_key, (nearest, far)
@@ -186,7 +185,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             state.fitted = (
                 None
                 if seen_by_sun is None
-                else sun_fit(seen_by_sun, context.camera, context.view.aspect, settings.resolution)
+                else sun_fit(seen_by_sun, context.view.world_to_clip, settings.resolution)
             )
             state.fit_key = (fit_key, actors)
         fit: SunFit | None = state.fitted

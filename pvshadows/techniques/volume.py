@@ -41,7 +41,6 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 import numpy as np
-import pyvista as pv
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.silhouette import volume_geometry
@@ -161,7 +160,7 @@ class VolumeTechnique:
         if extrude == "gpu" and not self._passes.can_extrude_on_gpu():
             extrude = "cpu"
             plan.notes.append("the extruding geometry shader does not compile here: cpu extrusion")
-        camera = _projection(context.renderer)
+        camera = context.view.world_to_clip
         key = (
             plan.pose.key(),
             zmode,
@@ -514,9 +513,3 @@ class VolumeTechnique:
         self.keep_only([])
         self._fallbacks.release()
         self._passes.release()
-
-
-def _projection(renderer: vtk.vtkRenderer) -> np.ndarray:
-    camera = renderer.GetActiveCamera()
-    matrix = camera.GetCompositeProjectionTransformMatrix(renderer.GetTiledAspectRatio(), -1, 1)
-    return pv.array_from_vtkmatrix(matrix)
