@@ -19,9 +19,10 @@
 //   PVS_GROUP_SIZE           lights in the group (sizes the uniform arrays)
 //   PVS_GROUP_LOOKUP         name of the function defined here
 //   PVS_GROUP_RECEIVER       the kind's receiver function
-//   PVS_GROUP_VIEW_TO_LIGHT  uniform mat4[]: view coordinates to light space
 //   PVS_GROUP_PACK           uniform mat4[]: columns params, cone, bias (xyz),
-//                            filter (x radius in texels, y taps, z layer in a cube array)
+//                            filter (x radius in texels, y taps, z layer in a cube array,
+//                            w the light's index in VTK's lights: its row of
+//                            pvsViewToLight, frame_block.glsl)
 //   PVS_GROUP_CLIP           uniform mat4[]: light space to the spot map's clip space
 //   PVS_GROUP_DEPTH, PVS_GROUP_RAW, PVS_GROUP_OFFSETS   sampler arrays: the maps
 //                            for comparisons, plain views of them (PCSS), disk offsets
@@ -58,6 +59,7 @@
 #endif
 
 #define PVS_GROUP_TAPS(j) int(PVS_GROUP_PACK[j][3].y)
+#define PVS_GROUP_VIEW(j) pvsViewToLight[int(PVS_GROUP_PACK[j][3].w)]
 
 #if defined(PVS_GROUP_LIT)
 #define PVS_GROUP_FILTER(j, r) PVS_LIT(PVS_GROUP_MAP(j), r)
@@ -75,9 +77,9 @@
 #endif
 
 #if defined(PVS_GROUP_TRANSLUCENT)
-#define PVS_GROUP_ONE(j, visibility) { PvsReceiver receiver = PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW_TO_LIGHT[j], PVS_GROUP_PACK[j][2].xyz, posVC, normalVC); visibility = PVS_GROUP_FILTER(j, receiver) * PVS_TRANSMIT(PVS_GROUP_TRANSMIT[j], PVS_GROUP_MAP(j), receiver); }
+#define PVS_GROUP_ONE(j, visibility) { PvsReceiver receiver = PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW(j), PVS_GROUP_PACK[j][2].xyz, posVC, normalVC); visibility = PVS_GROUP_FILTER(j, receiver) * PVS_TRANSMIT(PVS_GROUP_TRANSMIT[j], PVS_GROUP_MAP(j), receiver); }
 #else
-#define PVS_GROUP_ONE(j, visibility) visibility = PVS_GROUP_FILTER(j, PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW_TO_LIGHT[j], PVS_GROUP_PACK[j][2].xyz, posVC, normalVC));
+#define PVS_GROUP_ONE(j, visibility) visibility = PVS_GROUP_FILTER(j, PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW(j), PVS_GROUP_PACK[j][2].xyz, posVC, normalVC));
 #endif
 #define PVS_GROUP_GLOBAL(j, visibility) float visibility = 1.0;
 
@@ -112,6 +114,7 @@ void PVS_GROUP_LOOKUP(vec3 posVC, vec3 normalVC)
 #undef PVS_GROUP_SAMPLER
 #undef PVS_GROUP_MAP
 #undef PVS_GROUP_TAPS
+#undef PVS_GROUP_VIEW
 #undef PVS_GROUP_FILTER
 #undef PVS_GROUP_ONE
 #undef PVS_GROUP_GLOBAL

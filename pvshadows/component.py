@@ -316,11 +316,7 @@ class ShadowsComponent:
         """
         key = vtk_id(self._check_actor(actor, cast, "cast"))
         through = _check_transmittance(transmittance)
-        self._reader.casting[key] = bool(cast)
-        if through is None:
-            self._reader.transmitting.pop(key, None)
-        else:
-            self._reader.transmitting[key] = through
+        self._reader.set_casting(key, bool(cast), through)
 
     def set_receiver(
         self, actor: vtk.vtkActor, receive: bool = True, *, plane: bool = False
@@ -365,10 +361,7 @@ class ShadowsComponent:
                 raise ValueError(msg)
             name = self._actor_name(actor)
             require_plane(actor, self._reader.triangles_of(actor), name)
-            self._reader.planes.add(key)
-        else:
-            self._reader.planes.discard(key)
-        self._reader.receiving[key] = bool(receive)
+        self._reader.set_receiving(key, bool(receive), plane)
 
     def show_volumes(self, show: bool = True) -> None:
         """Draw the shadow volumes translucent over the scene, for debugging.

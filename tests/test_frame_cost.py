@@ -17,6 +17,8 @@ def counters(pl):
         "received": shadows._edits.received,
         "uniforms": shadows._edits.uniform_calls,
         "waited": shadows._timer.waited,
+        "block uploads": shadows._block.uploads,
+        "planned": shadows.memo.made,
     }
 
 
@@ -33,7 +35,6 @@ def crowd():
 
 def test_a_new_camera_rereads_no_actor_and_tests_no_cone():
     pl, _ = crowd()
-    receivers = len(pl.shadows._renderers[0].snapshot.receivers)
     before = counters(pl)
     pl.camera.Azimuth(10)
     draw(pl)
@@ -41,10 +42,24 @@ def test_a_new_camera_rereads_no_actor_and_tests_no_cone():
     assert counted["reread"] == 0
     assert counted["cone tests"] == 0
     assert counted["edits"] == 0
-    # Only the camera-dependent uniform (one matrix for the one light) is set again.
-    assert counted["uniforms"] == receivers
+    # The camera-dependent matrix goes to the frame's uniform block, once for all
+    # 200 receivers: no receiver is given a uniform.
+    assert counted["uniforms"] == 0
+    assert counted["block uploads"] == 1
     assert counted["waited"] == 0
     assert pl.shadows.last_frame.passes_run == 0
+
+
+def test_a_camera_that_sees_the_same_receivers_keeps_the_plans():
+    pl, _ = crowd()
+    before = counters(pl)
+    for _ in range(3):
+        pl.camera.Azimuth(0.5)
+        draw(pl)
+    counted = change(before, counters(pl))
+    assert counted["planned"] == 0
+    assert counted["block uploads"] == 3
+    assert counted["uniforms"] == 0
 
 
 def test_nothing_changed_costs_no_vtk_call():

@@ -166,6 +166,24 @@ def test_edit_that_does_not_land_is_reported(monkeypatch):
     assert all("diffuse += (df*lightColor" in note for note in notes)
 
 
+def test_edits_made_before_the_first_draw_are_checked_from_the_next_frame(monkeypatch):
+    # A vtkDataSetMapper makes the mapper that compiles its shaders during its
+    # first draw: edits put on before then are watched from the next frame.
+    hooks = pvshadows.shaders.shading._light_hooks
+
+    def reworded(*args):
+        return [(original.replace("(df * ", "(df*"), new) for original, new in hooks(*args)]
+
+    monkeypatch.setattr(pvshadows.shaders.shading, "_light_hooks", reworded)
+    pl = _scene()
+    pl.add_mesh(pv.Sphere(radius=0.6, center=(0, 0, 1.2)), color="tan")
+    pl.shadows.enable()
+    with pytest.warns(UserWarning, match="did not land"):
+        draw(pl)
+        draw(pl)
+    assert len(pl.shadows.last_frame.receivers) == 2
+
+
 def test_variant_that_does_not_compile_is_left_as_vtk_built_it(monkeypatch):
     monkeypatch.setattr(pvshadows.shaders.shading, "_FACET_NORMAL", "\n  pvsFacetVC = ;")
     pl = _scene()

@@ -55,6 +55,9 @@ class VolumePlan:
         ``"zpass"`` or ``"zfail"`` (``""`` when ``enclosing`` holds the light).
     fallback : tuple of (str, LightPlan) or None
         The shadow-map technique and its plan over the open casters only.
+    zmode_reason : str
+        Why ``zmode`` was chosen (the camera decides it, so it is chosen
+        again each frame the camera moves).
     """
 
     closed: list[tuple[ActorState, VolumeMesh]]
@@ -62,6 +65,7 @@ class VolumePlan:
     enclosing: ActorState | None = None
     zmode: str = ""
     fallback: tuple[str, LightPlan] | None = None
+    zmode_reason: str = ""
 
 
 @dataclass

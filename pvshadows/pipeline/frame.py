@@ -17,12 +17,13 @@ from pathlib import Path
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.buffers import forget_pointer_records
+from pvshadows.gl.frame_block import FrameBlock
 from pvshadows.gl.texture_units import park_active_unit
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.plan import LightPlan
 from pvshadows.model.report import FrameFailure, FrameReport, LightReport
 from pvshadows.model.settings import ShadowSettings
-from pvshadows.pipeline.planner import plan_frame
+from pvshadows.pipeline.planner import PlanMemo, plan_frame
 from pvshadows.pipeline.reach import ReachCache
 from pvshadows.scene.impostors import LIGHT_SPACE_TECHNIQUES, lit_without_triangles
 from pvshadows.scene.snapshot import SceneReader, Snapshot
@@ -66,9 +67,12 @@ class RendererShadows:
         self.reach = ReachCache()
         #: Open casters of volume lights already warned about (one warning each).
         self.warned_open: set[tuple] = set()
+        #: Last frame's plans, kept while only the camera moves (``memo.kept`` counts such frames).
+        self.memo = PlanMemo()
         self._window: vtk.vtkOpenGLRenderWindow | None = None
         self._timer: PassTimer | None = None
         self._buffers: ActorBuffers | None = None
+        self._block: FrameBlock | None = None
         self._techniques: dict[str, Technique] = {}
         self._frame = 0
         self._active: list[Technique] = []
@@ -108,6 +112,7 @@ class RendererShadows:
         self._window = window
         self._timer = PassTimer(window)
         self._buffers = ActorBuffers(window)
+        self._block = FrameBlock(window)
         self._techniques = {}
 
     def _on_start(self, renderer: vtk.vtkRenderer, event: str) -> None:
@@ -126,10 +131,11 @@ class RendererShadows:
         renderer = self.renderer
         renderer.UpdateLightsGeometryToFollowCamera()
         snapshot = self._reader.read(renderer)
-        view = FrameView.of(renderer)
+        last = self._context.view if self._context is not None else None
+        view = FrameView.of(renderer, last)
         self._where = "planning"
         plans = plan_frame(
-            renderer, snapshot, self._settings_for, self.reach, view, self.warned_open
+            renderer, snapshot, self._settings_for, self.reach, view, self.warned_open, self.memo
         )
         context = FrameContext(
             self._window,
@@ -166,6 +172,8 @@ class RendererShadows:
                 self._active.append(technique)
             uniforms.update(technique.activate(plan, context))
         self._note_impostors(plans, snapshot)
+        for light_report, plan in zip(report.lights, plans, strict=True):
+            light_report.notes = list(plan.notes)
         self._where = "keeping only this frame's maps"
         park_active_unit(self._window)
         for technique in self._techniques.values():
@@ -173,6 +181,8 @@ class RendererShadows:
         if snapshot is not self.snapshot:
             self._buffers.keep_only(snapshot.actors)
         self._where = "receiver shader edits"
+        assert self._block is not None  # made by _start_gl
+        self._block.update(_take_view_to_light(uniforms))
         self._apply_edits(snapshot, shadings, uniforms, light_space)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
 
@@ -233,6 +243,7 @@ class RendererShadows:
             except Exception as error:
                 troubles.append(f"{what}: {type(error).__name__}: {error}")
         troubles += self._edits.clear()
+        self.memo.forget()
         self._active = []
         self._techniques = {}
         self._context = None
@@ -300,9 +311,21 @@ class RendererShadows:
                 self._buffers.release()
             if self._timer is not None:
                 self._timer.release()
+            if self._block is not None:
+                self._block.release()
             forget_pointer_records()
         self._techniques.clear()
         self._window = None
+
+
+#: The uniform name of each light's view-to-light matrix, followed by its VTK index.
+_VIEW_TO_LIGHT = "pvsViewToLight"
+
+
+def _take_view_to_light(uniforms: dict[str, object]) -> dict[int, object]:
+    """Remove the lights' view-to-light matrices from ``uniforms``; return them by light index."""
+    names = [name for name in uniforms if name.startswith(_VIEW_TO_LIGHT)]
+    return {int(name[len(_VIEW_TO_LIGHT) :]): uniforms.pop(name) for name in names}
 
 
 def _raised_in(error: Exception) -> str:

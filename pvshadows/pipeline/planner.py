@@ -23,7 +23,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.model.plan import AUTO_TECHNIQUE, SERVES, LightPlan
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.reach import ReachCache
-from pvshadows.pipeline.volume_plan import plan_volume
+from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
 from pvshadows.scene.culling import boxes_in_frustum
 from pvshadows.scene.light_kit import unshadowed_reason
 from pvshadows.scene.lights import LightKind, LightPose, casts_light, light_kind, light_pose
@@ -68,6 +68,66 @@ def _technique_for(
     return settings.technique, f"{settings.technique} as configured"
 
 
+class PlanMemo:
+    """Last frame's plans and what they were made from, kept between frames.
+
+    Plans depend on the actors (the snapshot), the lights and their settings,
+    and which receivers the camera sees. When none of these changed, the
+    frame keeps last frame's plans; only what the camera alone decides (a
+    volume light's z-pass or z-fail) is chosen again.
+
+    Attributes
+    ----------
+    kept : int
+        Frames that kept last frame's plans.
+    made : int
+        Frames that planned every light again.
+    """
+
+    def __init__(self) -> None:
+        self.kept = 0
+        self.made = 0
+        self._snapshot: Snapshot | None = None
+        self._lights: list[tuple] = []
+        self._seen = b""
+        self._plans: list[LightPlan] = []
+        self._planned: list[int] = []
+
+    def forget(self) -> None:
+        """Plan every light again next frame."""
+        self._snapshot, self._plans = None, []
+
+    def recall(self, snapshot: Snapshot, lights: list[tuple], seen: bytes) -> list | None:
+        """Return last frame's plans if they were made from the same inputs, else ``None``.
+
+        ``lights`` holds ``(light, modification time, settings)`` per light;
+        ``seen`` which receivers the camera sees. The plans come back with
+        the planner's notes only: what techniques and the frame added to
+        them last frame is said again this frame.
+        """
+        same = (
+            snapshot is self._snapshot
+            and seen == self._seen
+            and len(lights) == len(self._lights)
+            and all(
+                a[0] is b[0] and a[1] == b[1] and (a[2] is b[2] or a[2] == b[2])
+                for a, b in zip(lights, self._lights, strict=True)
+            )
+        )
+        if not same:
+            return None
+        for plan, planned in zip(self._plans, self._planned, strict=True):
+            del plan.notes[planned:]
+        return self._plans
+
+    def keep(
+        self, snapshot: Snapshot, lights: list[tuple], seen: bytes, plans: list[LightPlan]
+    ) -> None:
+        """Keep this frame's plans and what they were made from."""
+        self._snapshot, self._lights, self._seen, self._plans = snapshot, lights, seen, plans
+        self._planned = [len(plan.notes) for plan in plans]
+
+
 def plan_frame(
     renderer: vtk.vtkRenderer,
     snapshot: Snapshot,
@@ -75,6 +135,7 @@ def plan_frame(
     reach: ReachCache | None = None,
     view: FrameView | None = None,
     warned: set[tuple] | None = None,
+    memo: PlanMemo | None = None,
 ) -> list[LightPlan]:
     """Plan every light of a renderer for this frame.
 
@@ -95,27 +156,41 @@ def plan_frame(
     warned : set of tuple, optional
         Open casters of volume lights already warned about, kept between
         frames so each warns once (:func:`pvshadows.pipeline.volume_plan.plan_volume`).
+    memo : PlanMemo, optional
+        Last frame's plans: returned again (the same list) when the actors,
+        the lights, their settings and the receivers in view are last
+        frame's.
 
     Returns
     -------
     list of LightPlan
         One plan per light, in the renderer's order.
     """
+    collection = renderer.GetLights()
+    collection.InitTraversal()
+    lights = [collection.GetNextItem() for _ in range(collection.GetNumberOfItems())]
+    stamps = [(light, light.GetMTime(), settings_for(light)) for light in lights]
+    view = FrameView.of(renderer) if view is None else view
+    in_view = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
+    if memo is not None:
+        kept = memo.recall(snapshot, stamps, in_view.tobytes())
+        if kept is not None:
+            memo.kept += 1
+            for plan in kept:
+                if plan.volume is not None:
+                    choose_volume_zmode(plan, plan.volume, renderer)
+            return kept
+        memo.made += 1
     plans = []
     vtk_index = 0
-    lights = renderer.GetLights()
-    lights.InitTraversal()
     reach = ReachCache() if reach is None else reach
     warned = set() if warned is None else warned
     casters = snapshot.casters
-    view = FrameView.of(renderer) if view is None else view
-    in_view = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
     seen = [r for r, shown in zip(snapshot.receivers, in_view, strict=True) if shown]
     only_a_plane = sole_plane(snapshot.receivers) is not None
     plane: PlaneChoice | None = None  # the receiving plane of planar lights, chosen once
-    for index in range(lights.GetNumberOfItems()):
-        light = lights.GetNextItem()
-        plan = LightPlan(light, index, vtk_index, light_kind(light), settings_for(light))
+    for index, (light, _, settings) in enumerate(stamps):
+        plan = LightPlan(light, index, vtk_index, light_kind(light), settings)
         if light.GetSwitch():
             vtk_index += 1
         plans.append(plan)
@@ -176,6 +251,8 @@ def plan_frame(
             plan.plane = plane
             plan.notes.append(plane.reason)
     reach.keep_only({vtk_id(plan.light) for plan in plans}, snapshot.actors)
+    if memo is not None:
+        memo.keep(snapshot, stamps, in_view.tobytes(), plans)
     return plans
 
 

@@ -80,11 +80,40 @@ def plan_volume(
     for caster, mesh in closed:
         if mesh.how != "closed":
             plan.notes.append(f"{caster.name} counted as {HOW_COUNTED[mesh.how]}")
+    volume = VolumePlan(closed, light, None, "", fallback)
+    choose_volume_zmode(plan, volume, renderer)
+    return volume
+
+
+def choose_volume_zmode(plan: LightPlan, volume: VolumePlan, renderer: vtk.vtkRenderer) -> None:
+    """Choose z-pass or z-fail for the renderer's camera now; say it in ``plan.notes``.
+
+    The rest of a volume plan holds while only the camera moves: this part
+    alone is chosen again then.
+
+    Parameters
+    ----------
+    plan : LightPlan
+        The light's plan; its note on the counting is replaced.
+    volume : VolumePlan
+        Its volume plan, changed in place; one whose light is inside a
+        caster counts nothing and is left alone.
+    renderer : vtk.vtkRenderer
+        The renderer, whose camera decides.
+    """
+    if volume.enclosing is not None:
+        return
+    assert plan.settings is not None
     zmode, why = choose_zmode(
-        plan.settings.zmode, light, renderer, [(c.name, c.bounds) for c, _ in closed]
+        plan.settings.zmode, volume.light, renderer, [(c.name, c.bounds) for c, _ in volume.closed]
     )
-    plan.notes.append(f"{zmode}: {why}")
-    return VolumePlan(closed, light, None, zmode, fallback)
+    note = f"{zmode}: {why}"
+    old = f"{volume.zmode}: {volume.zmode_reason}"
+    if volume.zmode and old in plan.notes:
+        plan.notes[plan.notes.index(old)] = note
+    else:
+        plan.notes.append(note)
+    volume.zmode, volume.zmode_reason = zmode, why
 
 
 def _fallback(

@@ -35,6 +35,11 @@ def frustum_planes(camera: vtk.vtkCamera, aspect: float) -> np.ndarray:
     return clip_planes(np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)]))
 
 
+#: Each frustum plane is the clip matrix's last row plus or minus one of its first three.
+_ROWS = np.array([0, 0, 1, 1, 2, 2])
+_SIDES = np.array([[1.0], [-1.0], [1.0], [-1.0], [1.0], [-1.0]])
+
+
 def clip_planes(m: np.ndarray) -> np.ndarray:
     """Return the six frustum planes of a world-to-clip matrix (depth in [-1, 1]).
 
@@ -55,10 +60,8 @@ def clip_planes(m: np.ndarray) -> np.ndarray:
     >>> clip_planes(np.eye(4))[0].tolist()
     [1.0, 0.0, 0.0, 1.0]
     """
-    planes = np.array(
-        [m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[3] + m[2], m[3] - m[2]]
-    )
-    return planes / np.linalg.norm(planes[:, :3], axis=1, keepdims=True)
+    planes = m[3] + _SIDES * m[_ROWS]
+    return planes / np.sqrt(np.square(planes[:, :3]).sum(axis=1, keepdims=True))
 
 
 def box_in_frustum(box: np.ndarray, planes: np.ndarray) -> bool:

@@ -1,8 +1,10 @@
 """What a renderer holds in one frame: casters, receivers and their geometry.
 
 Each frame reads three VTK modification times per actor (the actor's, which
-covers its property and transform, its mapper's and the mapper's input's)
-and its roles; an actor whose stamp did not change keeps last frame's state
+covers its property and transform, its mapper's and the mapper's input's),
+in three calls over lists, and compares them with last frame's; only when
+they or the actors' roles (a version the role setters raise) differ is each
+actor's stamp compared. An actor whose stamp did not change keeps last frame's state
 (matrix, bounds, name, triangles) untouched. The renderer's actor list is
 walked again only when its props changed. Triangles are re-read only when the
 actor's data changed. When no actor changed, the frame gets last frame's
@@ -197,9 +199,50 @@ class SceneReader:
         self.receiving: dict[str, bool] = {}
         #: Actors named receiving planes of planar shadows.
         self.planes: set[str] = set()
+        #: Raised by every change of the roles above, so a frame compares them only then.
+        self.roles = 0
         self.problems: dict[str, str] = {}
         #: How many actors were read again (stamp changed) since the reader was made.
         self.reread = 0
+
+    def set_casting(self, key: str, cast: bool, transmittance: float | None) -> None:
+        """Set whether the actor ``key`` casts, and the share of light it lets through.
+
+        Parameters
+        ----------
+        key : str
+            The actor's :func:`pvshadows.scene.triangles.vtk_id`.
+        cast : bool
+            Whether it casts shadows.
+        transmittance : float or None
+            The share of light it lets through as a caster; ``None`` for
+            ``1 - opacity``.
+        """
+        self.casting[key] = cast
+        if transmittance is None:
+            self.transmitting.pop(key, None)
+        else:
+            self.transmitting[key] = transmittance
+        self.roles += 1
+
+    def set_receiving(self, key: str, receive: bool, plane: bool) -> None:
+        """Set whether the actor ``key`` receives, and whether it is the planar receiving plane.
+
+        Parameters
+        ----------
+        key : str
+            The actor's :func:`pvshadows.scene.triangles.vtk_id`.
+        receive : bool
+            Whether it shows shadows.
+        plane : bool
+            Whether planar shadows flatten onto it.
+        """
+        self.receiving[key] = receive
+        if plane:
+            self.planes.add(key)
+        else:
+            self.planes.discard(key)
+        self.roles += 1
 
     def name_of(self, actor: vtk.vtkActor) -> str:
         """Return how messages name an actor, e.g. ``"actor 'ground'"``."""
@@ -275,6 +318,21 @@ class SceneReader:
             collection.InitTraversal()
             cache.actors = [collection.GetNextActor() for _ in range(collection.GetNumberOfItems())]
             cache.props = props
+            cache.times = None
+        times = _times(cache.actors, cache.mappers, cache.datas)
+        if (
+            times is not None
+            and times == cache.times
+            and cache.roles == self.roles
+            and (cache.camera == camera or not cache.followers)
+            and cache.snapshot is not None
+        ):
+            cache.camera = camera
+            return cache.snapshot
+        return self._read_changed(cache, camera)
+
+    def _read_changed(self, cache: _RendererCache, camera: int) -> Snapshot:
+        """Compare each actor's stamp; read again those that changed."""
         entries: dict[int, _Entry] = {}
         changed = []
         for actor in cache.actors:
@@ -287,15 +345,21 @@ class SceneReader:
                 entry = self._entry(actor, camera)
                 changed.append(entry.key)
             entries[id(actor)] = entry
+        ordered = list(entries.values())
+        cache.mappers = [_NO_MAPPER if e.mapper is None else e.mapper for e in ordered]
+        cache.datas = [_NO_DATA if e.data is None else e.data for e in ordered]
+        cache.times = _times(cache.actors, cache.mappers, cache.datas)
+        cache.followers = any(e.follower for e in ordered)
+        cache.camera, cache.roles = camera, self.roles
         if not changed and entries.keys() == cache.entries.keys() and cache.snapshot:
             return cache.snapshot
         self.reread += len(changed)
-        kept = {e.key for e in entries.values()}
+        kept = {e.key for e in ordered}
         for gone in cache.entries.values():
             if gone.key not in kept:
                 self._cache.pop(gone.key, None)
-        actors = [e.state for e in entries.values() if e.state is not None]
-        bystanders = [e.actor for e in entries.values() if e.bystander]
+        actors = [e.state for e in ordered if e.state is not None]
+        bystanders = [e.actor for e in ordered if e.bystander]
         cache.entries = entries
         cache.snapshot = Snapshot(actors, bystanders, frozenset(changed))
         return cache.snapshot
@@ -369,9 +433,41 @@ class _Entry:
 
 @dataclass
 class _RendererCache:
-    """The actors one renderer showed in its last frame."""
+    """The actors one renderer showed in its last frame.
+
+    ``mappers`` and ``datas`` line up with ``actors`` (a stand-in where an
+    actor has none), so that one frame reads every modification time in
+    three calls over lists; ``times`` holds what they read last.
+    """
 
     props: int = -1
     actors: list[vtk.vtkActor] = field(default_factory=list)
     entries: dict[int, _Entry] = field(default_factory=dict)
     snapshot: Snapshot | None = None
+    mappers: list[vtk.vtkObject] = field(default_factory=list)
+    datas: list[vtk.vtkDataObject] = field(default_factory=list)
+    times: tuple | None = None
+    camera: int = -1
+    roles: int = -1
+    followers: bool = False
+
+
+#: Stand-ins for an actor without a mapper or input: their times never change.
+_NO_MAPPER = vtk.vtkObject()
+_NO_DATA = vtk.vtkPolyData()
+
+
+def _times(
+    actors: list[vtk.vtkActor], mappers: list[vtk.vtkObject], datas: list[vtk.vtkDataObject]
+) -> tuple | None:
+    """Return the modification times of actors, their mappers and inputs, or ``None``.
+
+    ``None`` when the lists do not line up (the actor list was walked again).
+    """
+    if not (len(actors) == len(mappers) == len(datas)):
+        return None
+    return (
+        list(map(vtk.vtkActor.GetMTime, actors)),
+        list(map(vtk.vtkObject.GetMTime, mappers)),
+        list(map(vtk.vtkDataObject.GetMTime, datas)),
+    )

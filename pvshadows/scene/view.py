@@ -41,6 +41,9 @@ class FrameView:
         Width and height of the renderer in pixels.
     planes : numpy.ndarray
         ``(6, 4)`` world frustum planes (see :func:`pvshadows.scene.culling.frustum_planes`).
+    stamp : tuple
+        The camera's modification time, the aspect ratio and the size it
+        was built at: a view with the same stamp is the same view.
     """
 
     world_to_view: np.ndarray
@@ -50,15 +53,19 @@ class FrameView:
     aspect: float
     viewport: tuple[int, int]
     planes: np.ndarray
+    stamp: tuple = ()
 
     @classmethod
-    def of(cls, renderer: vtk.vtkRenderer) -> FrameView:
+    def of(cls, renderer: vtk.vtkRenderer, last: FrameView | None = None) -> FrameView:
         """Build the view of a renderer's active camera as it is now.
 
         Parameters
         ----------
         renderer : vtk.vtkRenderer
             The renderer (or tile) being drawn.
+        last : FrameView, optional
+            The view of the last frame, returned itself when the camera,
+            aspect ratio and size did not change since.
 
         Returns
         -------
@@ -76,17 +83,22 @@ class FrameView:
         """
         camera = renderer.GetActiveCamera()
         aspect = float(renderer.GetTiledAspectRatio())
+        width, height = renderer.GetSize()
+        stamp = (camera, camera.GetMTime(), aspect, width, height)
+        if last is not None and last.stamp == stamp:
+            return last
         world_to_view = _array(camera.GetModelViewTransformMatrix())
         projection = _array(camera.GetProjectionTransformMatrix(aspect, -1, 1))
-        width, height = renderer.GetSize()
+        world_to_clip = projection @ world_to_view
         return cls(
             world_to_view,
             np.linalg.inv(world_to_view),
             projection,
-            projection @ world_to_view,
+            world_to_clip,
             aspect,
             (int(width), int(height)),
-            clip_planes(projection @ world_to_view),
+            clip_planes(world_to_clip),
+            stamp,
         )
 
     def light_in_view(self, light: np.ndarray) -> np.ndarray:

@@ -38,6 +38,10 @@ from pvshadows.shaders.shading import (
 _LIT_POINTS = "lit points"
 
 
+def _same_values(a: dict[str, object], b: dict[str, object]) -> bool:
+    return a.keys() == b.keys() and all(_same(value, b[name]) for name, value in a.items())
+
+
 def _same(a: object, b: object) -> bool:
     if a is b:
         return True
@@ -100,6 +104,10 @@ class ReceiverEdits:
         self._probe: object = None
         self._standing: list[vtk.vtkUniforms] = []
         self._flagged: set[str] = set()
+        #: Receivers whose programs cannot be watched yet (no OpenGL mapper before a first draw).
+        self._unwatched: set[str] = set()
+        #: The lights' uniform values of the last frame (nothing to send when they are the same).
+        self._given: dict[str, object] = {}
         self._problems: dict[str, str] = {}
         #: Uniform values handed to VTK since this object was made (one per actor and uniform).
         self.uniform_calls = 0
@@ -137,6 +145,8 @@ class ReceiverEdits:
         """
         light_space = light_space or []
         lit_points = lit_points or set()
+        if self._unwatched:
+            self._unwatched = {k for k in self._unwatched if not self._edits[k].check.attach()}
         flagged, self._flagged = self._flagged, set()
         same = (
             snapshot is self._snapshot
@@ -145,8 +155,11 @@ class ReceiverEdits:
             and not flagged
         )
         if same:
-            self._send_changed(uniforms)
+            if not _same_values(uniforms, self._given):
+                self._send_changed(uniforms)
+                self._given = dict(uniforms)
             return
+        self._given = dict(uniforms)
         # With the same lights, a receiver whose state is last frame's keeps its edits
         # and takes only the uniform values that changed, with the others of its kind:
         # a frame costs the actors that changed, not every receiver.
@@ -229,6 +242,8 @@ class ReceiverEdits:
                     actor, lights, triangles=triangles
                 )
             edits.apply(self._replacements[signature])
+            if not edits.check.attach():
+                self._unwatched.add(key)
             self.edited += 1
             self._note_problem(key)
         previous = self._sent.get(signature) if self._signature_of.get(key) == signature else None
@@ -325,6 +340,7 @@ class ReceiverEdits:
         return {key: (self._edits[key].actor, why) for key, why in self._problems.items()}
 
     def _forget(self, key: str) -> None:
+        self._unwatched.discard(key)
         self._problems.pop(key, None)
         self._signature_of.pop(key, None)
         self._uniforms.pop(key, None)

@@ -156,18 +156,32 @@ class LandingCheck:
             self._seen.clear()
             self.missing = []
             self.failed = False
-        self._attach()
+        self.attach()
 
-    def _attach(self) -> None:
+    def attach(self) -> bool:
+        """Watch the programs of the actor's OpenGL mapper; return whether it exists yet.
+
+        A ``vtkDataSetMapper`` makes its inner mapper during its first
+        render, so an actor edited before then is watched from the next
+        frame on: VTK hands over the program at every draw, so none is missed.
+
+        Returns
+        -------
+        bool
+            ``True`` once the mapper is watched.
+        """
         mapper = opengl_mapper(self.actor)
-        if mapper is self._mapper or mapper is None:
-            return
+        if mapper is None:
+            return False
+        if mapper is self._mapper:
+            return True
         self.release()
         self._mapper = mapper
         self._tags = [
             mapper.AddObserver(vtk.vtkCommand.UpdateShaderEvent, self._on_program),
             mapper.AddObserver(vtk.vtkCommand.ErrorEvent, self._on_error),
         ]
+        return True
 
     @calldata_type(vtk.VTK_OBJECT)
     def _on_program(self, mapper: vtk.vtkMapper, event: str, program: vtk.vtkShaderProgram) -> None:

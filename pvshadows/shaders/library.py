@@ -114,11 +114,12 @@ class MapLookup:
     """One light's read of its shadow map, looked up with the other lights of its group.
 
     The light's own uniforms (``pvsDepth{i}``, ``pvsTransmit{i}``, ``pvsParams{i}``,
-    ``pvsViewToLight{i}``, ``pvsBias{i}``, ``pvsCone{i}``,
-    ``pvsLightToClip{i}``, ``pvsOffsets{i}``, ``pvsRaw{i}``,
-    ``pvsFilterRadius{i}``) are packed into the group's arrays by
-    :func:`group_uniforms`; its visibility is the GLSL float
-    :attr:`visibility_name`.
+    ``pvsBias{i}``, ``pvsCone{i}``, ``pvsLightToClip{i}``, ``pvsOffsets{i}``,
+    ``pvsRaw{i}``, ``pvsFilterRadius{i}``) are packed into the group's arrays by
+    :func:`group_uniforms`; its view-to-light matrix (``pvsViewToLight{i}``,
+    which changes with the camera) goes to the frame's uniform block
+    (:class:`pvshadows.gl.frame_block.FrameBlock`) instead; its visibility
+    is the GLSL float :attr:`visibility_name`.
 
     Attributes
     ----------
@@ -215,7 +216,6 @@ def _group_instance(group: str, lookups: list[MapLookup]) -> str:
         "PVS_GROUP_SIZE": str(len(lookups)),
         "PVS_GROUP_LOOKUP": f"{uniform}Lookup",
         "PVS_GROUP_RECEIVER": f"pvs{first.kind.capitalize()}Receiver",
-        "PVS_GROUP_VIEW_TO_LIGHT": f"{uniform}ViewToLight",
         "PVS_GROUP_PACK": f"{uniform}Pack",
         "PVS_GROUP_CLIP": f"{uniform}LightToClip",
         "PVS_GROUP_DEPTH": f"{uniform}Depth",
@@ -289,7 +289,9 @@ def shadow_functions(lookups: Iterable[MapLookup]) -> str:
     by_kind: dict[str, dict[str, list[MapLookup]]] = {}
     for group, members in groups.items():
         by_kind.setdefault(members[0].kind, {})[group] = members
-    files = [glsl_source("shadow_common.glsl")]
+    lights = max(lookup.vtk_index for members in groups.values() for lookup in members) + 1
+    block, unblock = _defines({"PVS_FRAME_LIGHTS": str(lights)})
+    files = [block + glsl_source("frame_block.glsl") + unblock, glsl_source("shadow_common.glsl")]
     for kind in by_kind:
         files.extend(glsl_source(name) for name in (*LOOPED.get(kind, ()), KINDS[kind]["file"]))
     code = list(dict.fromkeys(files))
@@ -368,7 +370,6 @@ OWN_UNIFORMS = (
     "pvsCone",
     "pvsBias",
     "pvsFilterRadius",
-    "pvsViewToLight",
     "pvsLightToClip",
     "pvsLayer",
 )
@@ -386,7 +387,7 @@ def _pack(uniforms: Mapping[str, object], lookup: MapLookup) -> np.ndarray:
         np.asarray(uniforms.get(f"{name}{i}", (0.0,) * 4), dtype=float)
         for name in ("pvsParams", "pvsCone", "pvsBias")
     ]
-    return np.column_stack([*columns, (radius, lookup.taps, layer, 0.0)]).astype(float)
+    return np.column_stack([*columns, (radius, lookup.taps, layer, float(i))]).astype(float)
 
 
 def group_uniforms(
@@ -413,10 +414,10 @@ def group_uniforms(
     --------
     >>> import numpy as np
     >>> from pvshadows.shaders.library import MapLookup, group_uniforms
-    >>> own = {"pvsDepth2": 5, "pvsParams2": (1, 0, 0, 0), "pvsViewToLight2": np.eye(4)}
+    >>> own = {"pvsDepth2": 5, "pvsParams2": (1, 0, 0, 0)}
     >>> packed = group_uniforms([MapLookup("sun", "hard", 2)], {**own, "pvsProbeLight": -1})
     >>> sorted(packed)
-    ['pvsProbeLight', 'pvsSunHardDepth', 'pvsSunHardPack', 'pvsSunHardViewToLight']
+    ['pvsProbeLight', 'pvsSunHardDepth', 'pvsSunHardPack']
     >>> packed["pvsSunHardDepth"], packed["pvsSunHardPack"].shape
     ([5], (1, 4, 4))
     """
@@ -425,7 +426,6 @@ def group_uniforms(
     packed: dict[str, object] = {k: v for k, v in uniforms.items() if k not in taken}
     for group, members in groups.items():
         name = f"pvs{group}"
-        packed[f"{name}ViewToLight"] = _matrices(uniforms, "pvsViewToLight", members)
         packed[f"{name}Pack"] = np.stack([_pack(uniforms, m) for m in members])
         if members[0].kind == "spot":
             packed[f"{name}LightToClip"] = _matrices(uniforms, "pvsLightToClip", members)

@@ -59,6 +59,9 @@ class CubeState:
     frame: int = -1
     drawn: bool = False
     companion: Companion | None = None
+    #: The plan the cube was last brought up to date for: a plan kept by the planner
+    #: (nothing but the camera moved) finds the cube still right.
+    planned: LightPlan | None = None
 
     def release(self) -> None:
         """Release the cube and its companion."""
@@ -179,6 +182,10 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
                 state.release()
             state = CubeState(self._new_cube(settings.resolution, context, own))
             self._states[vtk_id(plan.light)] = state
+        if state.planned is plan and state.key is not None and state.companion is None:
+            reused = f"light and casters unchanged since frame {state.frame}: map still right"
+            return [PassReport("cube depth", "reused", reused)]
+        state.planned = None
         position = plan.pose.position
         state.nearest, state.far = distance_range(position, plan.casters)
         companion = self._update_companion(plan, context, state, translucent)
@@ -195,6 +202,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             tuple(c.key() for c in opaque),
         )
         if key == state.key:
+            state.planned = plan
             reused = f"light and casters unchanged since frame {state.frame}: map still right"
             return [PassReport("cube depth", "reused", reused), *companion]
         casters = [
@@ -208,7 +216,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         ]
         assert self._pass is not None
         reports = self._pass.render(state.cube, casters, state.far, settings.passes, context.timer)
-        state.key, state.frame = key, context.frame
+        state.key, state.frame, state.planned = key, context.frame, plan
         return reports + companion
 
     def _update_companion(

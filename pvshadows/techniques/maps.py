@@ -68,6 +68,9 @@ class MapState:
     fitted: SunFit | None = None
     casters_of: tuple | None = None
     companion: Companion | None = None
+    #: The spot plan the map was last brought up to date for: a plan kept by the planner
+    #: (nothing but the camera moved) finds the map still right.
+    planned: LightPlan | None = None
 
     def release(self) -> None:
         """Release the map and its companion."""
@@ -139,6 +142,10 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
     ) -> list[PassReport]:
         pose, settings = plan.pose, plan.settings
         assert pose is not None and settings is not None
+        if state.planned is plan and state.key is not None and state.companion is None:
+            reused = f"light, casters and coverage unchanged since frame {state.frame}"
+            return [PassReport("map depth", "reused", reused)]
+        state.planned = None
         inside = plan.casters
         ranged = inside or context.snapshot.casters
         keys = tuple(c.key() for c in inside)
@@ -164,9 +171,11 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         projection = (state.light_to_clip.tobytes(), far)
         key = (pose.key(), settings.resolution, settings.cull_front, projection)
         detail = f"{len(inside)} of {len(context.snapshot.casters)} casters inside the cone"
-        return self._render(
+        reports = self._render(
             state, key, inside, context, far, along_z=False, detail=detail, settings=settings
         )
+        state.planned = plan
+        return reports
 
     def _update_sun(
         self, plan: LightPlan, context: FrameContext, state: MapState
