@@ -15,7 +15,6 @@ start of each of the renderer's frames, after pvshadows' own passes.
 
 from __future__ import annotations
 
-import ctypes
 from collections.abc import Mapping
 
 import numpy as np
@@ -44,38 +43,37 @@ class FrameBlock:
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._gl = opengl_for(window)
         self._buffer = int(self._gl.glGenBuffers(1))
-        self._capacity = 0
+        self._capacity = 8
         self._data = b""
         self.uploads = 0
 
     def update(self, matrices: Mapping[int, object]) -> None:
         """Send this frame's matrices (by VTK light index) and bind the block.
 
+        The buffer holds at least 8 rows, and twice the rows asked for
+        whenever more are: never fewer than any receiver's block declares.
+
         Parameters
         ----------
         matrices : dict
-            ``(4, 4)`` view-to-light matrices by light index; rows of lights
-            without one are left as they were.
+            ``(4, 4)`` view-to-light matrices by light index; the rows of
+            other lights are zero.
         """
-        from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData, glBufferSubData
+        from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData
         from OpenGL.raw.GL.VERSION.GL_3_0 import glBindBufferBase
 
         gl = self._gl
-        rows = max(matrices, default=-1) + 1
-        gl.glBindBuffer(gl.GL_UNIFORM_BUFFER, self._buffer)
-        if rows > self._capacity:
-            self._capacity = max(8, 2 * rows)
-            glBufferData(gl.GL_UNIFORM_BUFFER, 64 * self._capacity, None, gl.GL_DYNAMIC_DRAW)
-            self._data = b""
-        block = np.zeros((max(rows, 1), 4, 4), dtype=np.float32)
+        self._capacity = max(self._capacity, 2 * (max(matrices, default=-1) + 1))
+        block = np.zeros((self._capacity, 4, 4), dtype=np.float32)
         for index, matrix in matrices.items():
             block[index] = np.asarray(matrix).T  # GLSL reads matrices by columns
         data = block.tobytes()
         if data != self._data:
-            glBufferSubData(gl.GL_UNIFORM_BUFFER, 0, len(data), ctypes.c_char_p(data))
+            gl.glBindBuffer(gl.GL_UNIFORM_BUFFER, self._buffer)
+            glBufferData(gl.GL_UNIFORM_BUFFER, len(data), data, gl.GL_DYNAMIC_DRAW)
+            gl.glBindBuffer(gl.GL_UNIFORM_BUFFER, 0)
             self._data = data
             self.uploads += 1
-        gl.glBindBuffer(gl.GL_UNIFORM_BUFFER, 0)
         glBindBufferBase(gl.GL_UNIFORM_BUFFER, BINDING, self._buffer)
 
     def release(self) -> None:

@@ -2,9 +2,11 @@
 
 A ``vtkShaderProperty`` replacement whose original text is not in the code
 VTK generated does nothing, silently: a VTK version that words its lighting
-code differently would leave receivers unshadowed without a sign. So every
-program VTK compiles for a receiver (its mapper's ``UpdateShaderEvent`` hands
-it over) is read once, and each edit is looked for in its fragment source.
+code differently would leave receivers unshadowed without a sign. So the
+program VTK draws a receiver with after each change of its edits (its
+mapper's ``UpdateShaderEvent`` hands it over) is read once, and each edit is
+looked for in its fragment source; then the receiver costs no call per
+frame.
 An edit counts as required unless the variant legitimately lacks its place:
 a light's hooks only where VTK's code shades with that light, the facet normal
 only where the variant computes a view position.
@@ -141,10 +143,11 @@ class LandingCheck:
         self._edits: list[tuple[str, str]] = []
         self._seen: set[str] = set()
         self._mapper: vtk.vtkMapper | None = None
-        self._tags: list[int] = []
+        self._error_tag: int | None = None
+        self._program_tag: int | None = None
 
     def expect(self, edits: list[tuple[str, str]]) -> None:
-        """Check the programs compiled from now on for ``edits``.
+        """Check the next program VTK draws the actor with for ``edits``.
 
         Parameters
         ----------
@@ -159,11 +162,14 @@ class LandingCheck:
         self.attach()
 
     def attach(self) -> bool:
-        """Watch the programs of the actor's OpenGL mapper; return whether it exists yet.
+        """Watch the actor's OpenGL mapper; return whether it exists yet.
 
-        A ``vtkDataSetMapper`` makes its inner mapper during its first
-        render, so an actor edited before then is watched from the next
-        frame on: VTK hands over the program at every draw, so none is missed.
+        Its compile errors are watched for as long as the check lives; its
+        program only until the next draw has handed it over and it was
+        checked (VTK hands it over at every draw, so a Python call per
+        receiver per frame would be the price of watching longer). A
+        ``vtkDataSetMapper`` makes its inner mapper during its first render,
+        so an actor edited before then is watched from the next frame on.
 
         Returns
         -------
@@ -173,20 +179,23 @@ class LandingCheck:
         mapper = opengl_mapper(self.actor)
         if mapper is None:
             return False
-        if mapper is self._mapper:
-            return True
-        self.release()
-        self._mapper = mapper
-        self._tags = [
-            mapper.AddObserver(vtk.vtkCommand.UpdateShaderEvent, self._on_program),
-            mapper.AddObserver(vtk.vtkCommand.ErrorEvent, self._on_error),
-        ]
+        if mapper is not self._mapper:
+            self.release()
+            self._mapper = mapper
+            self._error_tag = mapper.AddObserver(vtk.vtkCommand.ErrorEvent, self._on_error)
+        if self._program_tag is None:
+            self._program_tag = mapper.AddObserver(
+                vtk.vtkCommand.UpdateShaderEvent, self._on_program
+            )
         return True
 
     @calldata_type(vtk.VTK_OBJECT)
     def _on_program(self, mapper: vtk.vtkMapper, event: str, program: vtk.vtkShaderProgram) -> None:
         if program is None or not self._edits or self.failed:
             return  # after a failed compile VTK draws with its previous program
+        if self._program_tag is not None:
+            mapper.RemoveObserver(self._program_tag)
+            self._program_tag = None
         key = program.GetHash()
         if key in self._seen:
             return
@@ -213,7 +222,8 @@ class LandingCheck:
     def release(self) -> None:
         """Remove the observers from the mapper."""
         if self._mapper is not None:
-            for tag in self._tags:
-                self._mapper.RemoveObserver(tag)
+            for tag in (self._error_tag, self._program_tag):
+                if tag is not None:
+                    self._mapper.RemoveObserver(tag)
         self._mapper = None
-        self._tags = []
+        self._error_tag = self._program_tag = None
