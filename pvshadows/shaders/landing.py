@@ -179,10 +179,10 @@ class LandingCheck:
         mapper = opengl_mapper(self.actor)
         if mapper is None:
             return False
-        if mapper is not self._mapper:
+        if id(mapper) != id(self._mapper):  # (``is`` would narrow ``mapper`` to Optional)
             self.release()
-            self._mapper = mapper
             self._error_tag = mapper.AddObserver(vtk.vtkCommand.ErrorEvent, self._on_error)
+            self._mapper = mapper
         if self._program_tag is None:
             self._program_tag = mapper.AddObserver(
                 vtk.vtkCommand.UpdateShaderEvent, self._on_program
