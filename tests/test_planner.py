@@ -135,13 +135,13 @@ def test_the_planner_decides_what_a_volume_light_casts_before_it_draws():
     """Closed casters, open casters' fallback and z-pass or z-fail, from the plan alone."""
     from pvshadows.pipeline.planner import plan_frame
 
-    def volume_plan(pl, light):
+    def volume_plan(pl, light, gpu=True):
         pl.shadows.enable(technique="volume")
         snapshot = pl.shadows._reader.read(pl.renderer)
         settings = pl.shadows.settings(light)
-        (plan,) = plan_frame(pl.renderer, snapshot, lambda _: settings)
+        (plan,) = plan_frame(pl.renderer, snapshot, lambda _: settings, extrude_on_gpu=lambda: gpu)
         assert plan.technique == "volume"
-        return plan
+        return plan.cast
 
     scene = standard_scene()
     bowl = pv.Sphere(center=(3, -3, 1)).clip(normal="z", origin=(3, -3, 1))
@@ -153,12 +153,16 @@ def test_the_planner_decides_what_a_volume_light_casts_before_it_draws():
     name, subplan = plan.volume.fallback
     assert name == "cubemap" and [c.actor for c in subplan.casters] == [bowl_actor]
     assert plan.volume.zmode == "zpass" and plan.volume.enclosing is None
+    assert plan.volume.extrude == "gpu"
 
     in_the_box_shadow = [(-2.9, -0.35, 0.9), (-4.5, -0.5, 0.0), (0.0, 0.0, 1.0)]
     inside = standard_scene(camera=in_the_box_shadow)
-    plan = volume_plan(inside.plotter, inside.light)
+    plan = volume_plan(inside.plotter, inside.light, gpu=False)
     assert plan.volume.zmode == "zfail"
     assert any(note.startswith("zfail: the camera may be inside") for note in plan.notes)
+    # a window that does not compile the extruding geometry shader: the planner says cpu
+    assert plan.volume.extrude == "cpu"
+    assert "the extruding geometry shader does not compile here: cpu extrusion" in plan.notes
 
 
 def test_the_planner_chooses_the_receiving_plane_of_planar_lights():
@@ -172,9 +176,9 @@ def test_the_planner_chooses_the_receiving_plane_of_planar_lights():
     def planned():
         snapshot = pl.shadows._reader.read(pl.renderer)
         (plan,) = plan_frame(pl.renderer, snapshot, lambda _: settings)
-        assert plan.technique == "planar" and plan.plane.actor.actor is pl.actors["ground"]
-        assert plan.plane.reason in plan.notes
-        return plan.plane.reason
+        assert plan.technique == "planar" and plan.cast.plane.actor.actor is pl.actors["ground"]
+        assert plan.cast.plane.reason in plan.notes
+        return plan.cast.plane.reason
 
     assert planned() == "receiving plane: actor 'ground' (found on its own)"
     pl.shadows.set_receiver(pl.actors["ground"], plane=True)

@@ -1,4 +1,4 @@
-"""What the planner hands each technique: one light's plan for one frame, and who serves whom.
+"""What the planner hands each technique: one light's plan and cast per frame, who serves whom.
 
 The planner (:mod:`pvshadows.pipeline.planner`) fills these; techniques only
 read them, so they live below both.
@@ -53,8 +53,10 @@ class VolumePlan:
         its shadow, and nothing is counted.
     zmode : str
         ``"zpass"`` or ``"zfail"`` (``""`` when ``enclosing`` holds the light).
-    fallback : tuple of (str, LightPlan) or None
-        The shadow-map technique and its plan over the open casters only.
+    extrude : str
+        ``"gpu"`` (a geometry shader extrudes the silhouettes) or ``"cpu"``.
+    fallback : tuple of (str, Cast) or None
+        The shadow-map technique and its cast of the open casters only.
     zmode_reason : str
         Why ``zmode`` was chosen (the camera decides it, so it is chosen
         again each frame the camera moves).
@@ -64,13 +66,82 @@ class VolumePlan:
     light: np.ndarray
     enclosing: ActorState | None = None
     zmode: str = ""
-    fallback: tuple[str, LightPlan] | None = None
+    extrude: str = "gpu"
+    fallback: tuple[str, Cast] | None = None
     zmode_reason: str = ""
 
 
 @dataclass
+class Cast:
+    """What one shadowed light draws in one frame: every field is set.
+
+    The planner makes one for each light that casts, and techniques only
+    draw it.
+
+    Attributes
+    ----------
+    light : vtk.vtkLight
+        The light.
+    index : int
+        Its position in the renderer's light list.
+    vtk_index : int
+        Its index among switched-on lights, as VTK's shaders number them.
+    kind : LightKind
+        Point, spot or directional, as the user set it up.
+    settings : ShadowSettings
+        Its settings.
+    technique : str
+        The technique that draws it.
+    pose : LightPose
+        The world pose its shadows are cast from (a far point or spot light
+        may be cast as a directional one).
+    casters : list of ActorState
+        The casters that can shadow a receiver for this light.
+    notes : list of str
+        Decisions in words (the same list as its :class:`LightPlan`'s).
+    """
+
+    light: vtk.vtkLight
+    index: int
+    vtk_index: int
+    kind: LightKind
+    settings: ShadowSettings
+    technique: str
+    pose: LightPose
+    casters: list[ActorState]
+    notes: list[str]
+
+
+@dataclass
+class VolumeCast(Cast):
+    """A cast by shadow volumes, with what the planner decided for them.
+
+    Attributes
+    ----------
+    volume : VolumePlan
+        Its closed casters, the light they are cast from, the counting, the
+        extrusion and the open casters' fallback.
+    """
+
+    volume: VolumePlan
+
+
+@dataclass
+class PlanarCast(Cast):
+    """A cast flattened onto one receiving plane.
+
+    Attributes
+    ----------
+    plane : PlaneChoice
+        The receiving plane (or none, and why).
+    """
+
+    plane: PlaneChoice
+
+
+@dataclass
 class LightPlan:
-    """What one light does in one frame.
+    """What one light does in one frame, whether or not it casts.
 
     Attributes
     ----------
@@ -84,18 +155,10 @@ class LightPlan:
         Point, spot or directional.
     settings : ShadowSettings or None
         Its settings, ``None`` when shadows are not enabled for it.
-    technique : str or None
-        The technique chosen, ``None`` when it casts no shadow.
-    pose : LightPose or None
-        Its world pose (``None`` when it casts no shadow).
-    casters : list of ActorState
-        The casters that can shadow a receiver for this light.
     notes : list of str
         Decisions in words.
-    volume : VolumePlan or None
-        For technique ``"volume"``, what it casts and how it counts.
-    plane : PlaneChoice or None
-        For technique ``"planar"``, the receiving plane (or none, and why).
+    cast : Cast or None
+        What it draws; ``None`` when it casts no shadow (the notes say why).
     """
 
     light: vtk.vtkLight
@@ -103,9 +166,10 @@ class LightPlan:
     vtk_index: int
     kind: LightKind
     settings: ShadowSettings | None
-    technique: str | None = None
-    pose: LightPose | None = None
-    casters: list[ActorState] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
-    volume: VolumePlan | None = None
-    plane: PlaneChoice | None = None
+    cast: Cast | None = None
+
+    @property
+    def technique(self) -> str | None:
+        """The technique that draws the light, ``None`` when it casts no shadow."""
+        return None if self.cast is None else self.cast.technique

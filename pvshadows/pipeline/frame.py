@@ -33,6 +33,7 @@ from pvshadows.shaders.edits import ReceiverEdits
 from pvshadows.shaders.shading import PROBE_UNIFORM, LightShading, strength_uniform
 from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.base import FrameContext, Technique
+from pvshadows.techniques.volume import VolumeTechnique
 
 
 class RendererShadows:
@@ -115,6 +116,11 @@ class RendererShadows:
         self._block = FrameBlock(window)
         self._techniques = {}
 
+    def _extrudes_on_gpu(self) -> bool:
+        volume = self.technique("volume")
+        assert isinstance(volume, VolumeTechnique)
+        return volume.can_extrude_on_gpu()
+
     def _on_start(self, renderer: vtk.vtkRenderer, event: str) -> None:
         self._frame += 1
         self._where = "reading the scene"
@@ -135,7 +141,14 @@ class RendererShadows:
         view = FrameView.of(renderer, last)
         self._where = "planning"
         plans = plan_frame(
-            renderer, snapshot, self._settings_for, self.reach, view, self.warned_open, self.memo
+            renderer,
+            snapshot,
+            self._settings_for,
+            self.reach,
+            view,
+            self.warned_open,
+            self.memo,
+            self._extrudes_on_gpu,
         )
         context = FrameContext(
             self._window,
@@ -158,26 +171,27 @@ class RendererShadows:
                 plan.index, plan.kind.value, plan.technique, notes=plan.notes
             )
             report.lights.append(light_report)
-            if plan.technique is None:
+            cast = plan.cast
+            if cast is None:
                 continue
-            self._where = f"light {plan.index} ({plan.kind.value}, {plan.technique})"
-            technique = self.technique(plan.technique)
-            light_report.passes = technique.update(plan, context)
-            shadings.append(technique.shading(plan))
-            assert plan.settings is not None  # a light with a technique has its settings
-            uniforms[strength_uniform(plan.vtk_index)] = plan.settings.strength
-            if plan.technique in LIGHT_SPACE_TECHNIQUES:
+            self._where = f"light {plan.index} ({plan.kind.value}, {cast.technique})"
+            technique = self.technique(cast.technique)
+            light_report.passes = technique.update(cast, context)
+            shadings.append(technique.shading(cast))
+            uniforms[strength_uniform(cast.vtk_index)] = cast.settings.strength
+            if cast.technique in LIGHT_SPACE_TECHNIQUES:
                 light_space.append(shadings[-1])
             if technique not in self._active:
                 self._active.append(technique)
-            uniforms.update(technique.activate(plan, context))
+            uniforms.update(technique.activate(cast, context))
         self._note_impostors(plans, snapshot)
         for light_report, plan in zip(report.lights, plans, strict=True):
             light_report.notes = list(plan.notes)
         self._where = "keeping only this frame's maps"
         park_active_unit(self._window)
+        casts = [plan.cast for plan in plans if plan.cast is not None]
         for technique in self._techniques.values():
-            technique.keep_only(plans)
+            technique.keep_only(casts)
         if snapshot is not self.snapshot:
             self._buffers.keep_only(snapshot.actors)
         self._where = "receiver shader edits"

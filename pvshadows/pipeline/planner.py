@@ -20,7 +20,15 @@ from dataclasses import replace
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.model.plan import AUTO_TECHNIQUE, SERVES, LightPlan
+from pvshadows.model.plan import (
+    AUTO_TECHNIQUE,
+    SERVES,
+    Cast,
+    LightPlan,
+    PlanarCast,
+    VolumeCast,
+    VolumePlan,
+)
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.reach import ReachCache
 from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
@@ -43,7 +51,7 @@ PARALLEL_BELOW = 2e-3
 
 def _technique_for(
     kind: LightKind, settings: ShadowSettings, only_a_plane: bool
-) -> tuple[str | None, str]:
+) -> tuple[str, str]:
     if settings.technique == "auto":
         if only_a_plane:
             return "planar", (
@@ -136,6 +144,7 @@ def plan_frame(
     view: FrameView | None = None,
     warned: set[tuple] | None = None,
     memo: PlanMemo | None = None,
+    extrude_on_gpu: Callable[[], bool] | None = None,
 ) -> list[LightPlan]:
     """Plan every light of a renderer for this frame.
 
@@ -160,11 +169,16 @@ def plan_frame(
         Last frame's plans: returned again (the same list) when the actors,
         the lights, their settings and the receivers in view are last
         frame's.
+    extrude_on_gpu : callable, optional
+        Tells whether the window compiles the geometry shader that extrudes
+        shadow volumes (asked only when a volume light's settings want it);
+        assumed when not given.
 
     Returns
     -------
     list of LightPlan
-        One plan per light, in the renderer's order.
+        One plan per light, in the renderer's order; each that casts holds
+        its :class:`pvshadows.model.plan.Cast`.
     """
     collection = renderer.GetLights()
     collection.InitTraversal()
@@ -177,8 +191,8 @@ def plan_frame(
         if kept is not None:
             memo.kept += 1
             for plan in kept:
-                if plan.volume is not None:
-                    choose_volume_zmode(plan, plan.volume, renderer)
+                if isinstance(plan.cast, VolumeCast):
+                    choose_volume_zmode(plan.cast, plan.cast.volume, renderer)
             return kept
         memo.made += 1
     plans = []
@@ -194,7 +208,7 @@ def plan_frame(
         if light.GetSwitch():
             vtk_index += 1
         plans.append(plan)
-        if plan.settings is None:
+        if settings is None:
             plan.notes.append(unshadowed_reason(light, renderer))
             continue
         if not casts_light(light):
@@ -202,7 +216,7 @@ def plan_frame(
                 "the light is off or has zero intensity: it casts nothing and costs nothing"
             )
             continue
-        if plan.settings.strength == 0.0:
+        if settings.strength == 0.0:
             plan.notes.append("strength=0: its shadows would remove nothing, so none is drawn")
             continue
         if light.LightTypeIsHeadlight():
@@ -215,10 +229,7 @@ def plan_frame(
         except ValueError as error:
             plan.notes.append(f"casts nothing: {error}")
             continue
-        technique, why = _technique_for(plan.kind, plan.settings, only_a_plane)
-        if technique is None:
-            plan.notes.append(why)
-            continue
+        technique, why = _technique_for(plan.kind, settings, only_a_plane)
         key = vtk_id(light)
         reached = [r for r, hit in zip(seen, reach.reaches(key, pose, seen), strict=True) if hit]
         if not reached:
@@ -242,18 +253,38 @@ def plan_frame(
             pose = _fit_far_spot(pose, within, seen, plan.notes)
         if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
             plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
-        plan.pose, plan.casters, plan.technique = pose, within, technique
+        cast = Cast(
+            light, index, plan.vtk_index, plan.kind, settings, technique, pose, within, plan.notes
+        )
         if technique == "volume":
-            plan.volume = plan_volume(plan, renderer, snapshot, warned)
+            gpu = extrude_on_gpu if extrude_on_gpu is not None else lambda: True
+            cast = _volume_cast(cast, plan_volume(cast, renderer, snapshot, warned, gpu))
         elif technique == "planar":
             if plane is None:
                 plane = choose_plane(snapshot.receivers)
-            plan.plane = plane
+            cast = _planar_cast(cast, plane)
             plan.notes.append(plane.reason)
+        plan.cast = cast
     reach.keep_only({vtk_id(plan.light) for plan in plans}, snapshot.actors)
     if memo is not None:
         memo.keep(snapshot, stamps, in_view.tobytes(), plans)
     return plans
+
+
+def _volume_cast(cast: Cast, volume: VolumePlan) -> VolumeCast:
+    c = cast
+    return VolumeCast(
+        c.light, c.index, c.vtk_index, c.kind, c.settings, c.technique, c.pose, c.casters, c.notes,
+        volume,
+    )  # fmt: skip
+
+
+def _planar_cast(cast: Cast, plane: PlaneChoice) -> PlanarCast:
+    c = cast
+    return PlanarCast(
+        c.light, c.index, c.vtk_index, c.kind, c.settings, c.technique, c.pose, c.casters, c.notes,
+        plane,
+    )  # fmt: skip
 
 
 def _casters_seen_from(

@@ -14,10 +14,11 @@ only counts what the plan says.
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable
 from dataclasses import replace
 
 from pvshadows import _vtk as vtk
-from pvshadows.model.plan import FALLBACK_TECHNIQUES, SERVES, LightPlan, VolumePlan
+from pvshadows.model.plan import FALLBACK_TECHNIQUES, SERVES, Cast, VolumePlan
 from pvshadows.pipeline.volume_zmode import choose_zmode
 from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.scene.triangles import vtk_id
@@ -32,15 +33,18 @@ from pvshadows.techniques.volume_meshes import HOW_COUNTED, open_reason, split_c
 
 
 def plan_volume(
-    plan: LightPlan, renderer: vtk.vtkRenderer, snapshot: Snapshot, warned: set[tuple]
+    plan: Cast,
+    renderer: vtk.vtkRenderer,
+    snapshot: Snapshot,
+    warned: set[tuple],
+    extrude_on_gpu: Callable[[], bool],
 ) -> VolumePlan:
     """Decide what a volume light casts this frame; say it in ``plan.notes``.
 
     Parameters
     ----------
-    plan : LightPlan
-        The light's plan, technique ``"volume"``, with its pose, settings
-        and casters.
+    plan : Cast
+        The light's cast, technique ``"volume"``.
     renderer : vtk.vtkRenderer
         The renderer (its camera decides z-pass or z-fail).
     snapshot : Snapshot
@@ -48,6 +52,9 @@ def plan_volume(
     warned : set of tuple
         Open casters already warned about, kept between frames (one warning
         per caster, version of its data, kind of light and outcome).
+    extrude_on_gpu : callable
+        Tells whether the window compiles the extruding geometry shader
+        (asked only when the settings want it).
 
     Returns
     -------
@@ -60,7 +67,6 @@ def plan_volume(
     OpenMeshError
         With ``on_open="raise"``, naming the first open caster.
     """
-    assert plan.settings is not None and plan.pose is not None
     closed, open_casters = split_closed(plan)
     fallback = _fallback(plan, open_casters, warned)
     light = off_surfaces(homogeneous_light(plan), closed, plan.notes)
@@ -76,16 +82,20 @@ def plan_volume(
         plan.notes.append(
             f"the light is inside {enclosing.name}: everything outside it is in its shadow"
         )
-        return VolumePlan(closed, light, enclosing, "", fallback)
+        return VolumePlan(closed, light, enclosing, "", "gpu", fallback)
     for caster, mesh in closed:
         if mesh.how != "closed":
             plan.notes.append(f"{caster.name} counted as {HOW_COUNTED[mesh.how]}")
-    volume = VolumePlan(closed, light, None, "", fallback)
+    extrude = plan.settings.extrude
+    if extrude == "gpu" and not extrude_on_gpu():
+        extrude = "cpu"
+        plan.notes.append("the extruding geometry shader does not compile here: cpu extrusion")
+    volume = VolumePlan(closed, light, None, "", extrude, fallback)
     choose_volume_zmode(plan, volume, renderer)
     return volume
 
 
-def choose_volume_zmode(plan: LightPlan, volume: VolumePlan, renderer: vtk.vtkRenderer) -> None:
+def choose_volume_zmode(plan: Cast, volume: VolumePlan, renderer: vtk.vtkRenderer) -> None:
     """Choose z-pass or z-fail for the renderer's camera now; say it in ``plan.notes``.
 
     The rest of a volume plan holds while only the camera moves: this part
@@ -93,8 +103,8 @@ def choose_volume_zmode(plan: LightPlan, volume: VolumePlan, renderer: vtk.vtkRe
 
     Parameters
     ----------
-    plan : LightPlan
-        The light's plan; its note on the counting is replaced.
+    plan : Cast
+        The light's cast; its note on the counting is replaced.
     volume : VolumePlan
         Its volume plan, changed in place; one whose light is inside a
         caster counts nothing and is left alone.
@@ -103,7 +113,6 @@ def choose_volume_zmode(plan: LightPlan, volume: VolumePlan, renderer: vtk.vtkRe
     """
     if volume.enclosing is not None:
         return
-    assert plan.settings is not None
     zmode, why = choose_zmode(
         plan.settings.zmode, volume.light, renderer, [(c.name, c.bounds) for c, _ in volume.closed]
     )
@@ -117,8 +126,8 @@ def choose_volume_zmode(plan: LightPlan, volume: VolumePlan, renderer: vtk.vtkRe
 
 
 def _fallback(
-    plan: LightPlan, open_casters: list[ActorState], warned: set[tuple]
-) -> tuple[str, LightPlan] | None:
+    plan: Cast, open_casters: list[ActorState], warned: set[tuple]
+) -> tuple[str, Cast] | None:
     """Plan the shadow map that casts a volume light's open casters; warn once per caster."""
     if not open_casters:
         return None
@@ -147,4 +156,4 @@ def _fallback(
     if not usable:
         return None
     assert name is not None
-    return name, replace(plan, casters=open_casters, technique=name, notes=[], volume=None)
+    return name, replace(plan, casters=open_casters, technique=name, notes=[])

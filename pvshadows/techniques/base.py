@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar, Protocol
+from typing import ClassVar, Protocol, TypeVar
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.timing import PassTimer
-from pvshadows.model.plan import LightPlan
+from pvshadows.model.plan import Cast
 from pvshadows.model.report import PassReport
 from pvshadows.scene.render_target import RenderTarget, render_target
 from pvshadows.scene.snapshot import Snapshot
@@ -63,7 +63,11 @@ class FrameContext:
         return render_target(self.renderer)
 
 
-class Technique(Protocol):
+#: The kind of cast a technique draws (a volume technique needs a :class:`VolumeCast`).
+CastT = TypeVar("CastT", bound=Cast, contravariant=True)
+
+
+class Technique(Protocol[CastT]):
     """A shadow technique: the maps it keeps, the passes it runs, the shading it asks for.
 
     One object serves every light of a renderer that uses the technique.
@@ -71,19 +75,19 @@ class Technique(Protocol):
 
     name: ClassVar[str]
 
-    def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
+    def update(self, plan: CastT, context: FrameContext) -> list[PassReport]:
         """Bring the light's shadow data up to date; report each pass run, reused or skipped."""
 
-    def shading(self, plan: LightPlan) -> LightShading:
+    def shading(self, plan: CastT) -> LightShading:
         """Return how receivers read the light's shadow data."""
 
-    def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+    def activate(self, plan: CastT, context: FrameContext) -> dict[str, object]:
         """Bind the light's textures and return the receivers' uniform values."""
 
     def deactivate(self) -> None:
         """Free the texture units bound by :meth:`activate` (after the frame)."""
 
-    def keep_only(self, plans: list[LightPlan]) -> None:
+    def keep_only(self, plans: list[Cast]) -> None:
         """Release what lights that no longer use the technique held."""
 
     def release(self) -> None:

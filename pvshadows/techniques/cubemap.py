@@ -25,7 +25,7 @@ from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.cube_array import CubeArray, CubeSlot, cube_arrays_supported
 from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.transmittance_textures import TransmittanceCube, TransmittanceTexture
-from pvshadows.model.plan import LightPlan
+from pvshadows.model.plan import Cast
 from pvshadows.model.report import PassReport
 from pvshadows.passes.cube_depth import CubeCaster, CubeDepthPass, caster_face_mask
 from pvshadows.passes.transmittance import TranslucentCaster
@@ -61,7 +61,7 @@ class CubeState:
     companion: Companion | None = None
     #: The plan the cube was last brought up to date for: a plan kept by the planner
     #: (nothing but the camera moved) finds the cube still right.
-    planned: LightPlan | None = None
+    planned: Cast | None = None
 
     def release(self) -> None:
         """Release the cube and its companion."""
@@ -131,7 +131,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             {} if cube_arrays_supported(opengl_for(window)) else None
         )
         self._frame = -1
-        self._activated: list[LightPlan] = []
+        self._activated: list[Cast] = []
         self._allocations = 0
 
     def _new_cube(self, resolution: int, context: FrameContext, own: bool) -> DepthCube | CubeSlot:
@@ -153,12 +153,12 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         most = max(len(array.taken) + 1, AT_ONCE // (6 * 4 * resolution**2))
         return CubeSlot(array, min(wanted, most))
 
-    def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
+    def update(self, plan: Cast, context: FrameContext) -> list[PassReport]:
         """Bring the light's cube up to date for this frame.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan (technique ``"cubemap"``).
         context : FrameContext
             This frame's renderer, actors, buffers and timer.
@@ -169,7 +169,6 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             The passes run, reused or skipped.
         """
         settings = plan.settings
-        assert settings is not None and plan.pose is not None
         state = self._states.get(vtk_id(plan.light))
         opaque, translucent = split_casters(plan.casters)
         own = bool(translucent) or self.arrays is None
@@ -220,11 +219,10 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         return reports + companion
 
     def _update_companion(
-        self, plan: LightPlan, context: FrameContext, state: CubeState, translucent: list
+        self, plan: Cast, context: FrameContext, state: CubeState, translucent: list
     ) -> list[PassReport]:
         """Draw the light's translucent casters into its companion, or drop it when none."""
         settings, pose = plan.settings, plan.pose
-        assert settings is not None and pose is not None
         if not translucent:
             state.drop_companion()
             return []
@@ -265,12 +263,12 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         if self.arrays is not None:
             self.arrays.clear()
 
-    def shading(self, plan: LightPlan) -> LightShading:
+    def shading(self, plan: Cast) -> LightShading:
         """Return how receivers read this light's cube.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan.
 
         Returns
@@ -280,7 +278,6 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             with translucent casters multiplies in what they let through.
         """
         state = self._states[vtk_id(plan.light)]
-        assert plan.settings is not None
         if isinstance(state.cube, CubeSlot):
             texture = str(plan.settings.resolution)
             return lookup_shading(
@@ -294,12 +291,12 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             translucent=state.companion is not None,
         )
 
-    def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+    def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
         """Bind the light's cube and filter textures and return the receivers' uniforms.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan.
         context : FrameContext
             This frame's renderer and camera.
@@ -312,7 +309,6 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         state = self._states[vtk_id(plan.light)]
         settings = plan.settings
         pose = plan.pose
-        assert settings is not None and pose is not None
         i = plan.vtk_index
         spot = pose.kind is LightKind.SPOT
         cone = np.cos(np.radians(pose.cone_angle)) if spot else -2.0
@@ -336,7 +332,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         )
         return uniforms
 
-    def _array_units(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+    def _array_units(self, plan: Cast, context: FrameContext) -> dict[str, object]:
         """Bind again the maps of this frame's earlier lights if their array grew since.
 
         An array grows while the lights are brought up one by one; the units of
@@ -349,7 +345,6 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         uniforms: dict[str, object] = {}
         if allocations != self._allocations:
             for earlier in self._activated:
-                assert earlier.settings is not None
                 state = self._states[vtk_id(earlier.light)]
                 if isinstance(state.cube, CubeSlot) and state.drawn:
                     uniforms.update(

@@ -19,7 +19,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
 from pvshadows.gl.textures import DepthMap
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
-from pvshadows.model.plan import LightPlan
+from pvshadows.model.plan import Cast
 from pvshadows.model.report import PassReport
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.passes.map_depth import MapCaster, MapDepthPass
@@ -70,7 +70,7 @@ class MapState:
     companion: Companion | None = None
     #: The spot plan the map was last brought up to date for: a plan kept by the planner
     #: (nothing but the camera moved) finds the map still right.
-    planned: LightPlan | None = None
+    planned: Cast | None = None
 
     def release(self) -> None:
         """Release the map and its companion."""
@@ -84,8 +84,7 @@ class MapState:
             self.companion = None
 
 
-def _kind(plan: LightPlan) -> str:
-    assert plan.pose is not None
+def _kind(plan: Cast) -> str:
     return "sun" if plan.pose.kind is LightKind.DIRECTIONAL else "spot"
 
 
@@ -105,8 +104,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         self._pass = MapDepthPass(window)
         self._companions = Companions(window)
 
-    def _state(self, plan: LightPlan) -> MapState:
-        assert plan.settings is not None
+    def _state(self, plan: Cast) -> MapState:
         key = vtk_id(plan.light)
         state = self._states.get(key)
         if state is None or state.depth.resolution != plan.settings.resolution:
@@ -116,12 +114,12 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             self._states[key] = state
         return state
 
-    def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
+    def update(self, plan: Cast, context: FrameContext) -> list[PassReport]:
         """Bring the light's map up to date for this frame.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan (technique ``"map"``).
         context : FrameContext
             This frame's renderer, camera, actors, buffers and timer.
@@ -132,16 +130,12 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             The pass run, reused or skipped.
         """
         state = self._state(plan)
-        assert plan.pose is not None
         if plan.pose.kind is LightKind.DIRECTIONAL:
             return self._update_sun(plan, context, state)
         return self._update_spot(plan, context, state)
 
-    def _update_spot(
-        self, plan: LightPlan, context: FrameContext, state: MapState
-    ) -> list[PassReport]:
+    def _update_spot(self, plan: Cast, context: FrameContext, state: MapState) -> list[PassReport]:
         pose, settings = plan.pose, plan.settings
-        assert pose is not None and settings is not None
         if state.planned is plan and state.key is not None and state.companion is None:
             reused = f"light, casters and coverage unchanged since frame {state.frame}"
             return [PassReport("map depth", "reused", reused)]
@@ -177,11 +171,8 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         state.planned = plan
         return reports
 
-    def _update_sun(
-        self, plan: LightPlan, context: FrameContext, state: MapState
-    ) -> list[PassReport]:
+    def _update_sun(self, plan: Cast, context: FrameContext, state: MapState) -> list[PassReport]:
         pose, settings = plan.pose, plan.settings
-        assert pose is not None and settings is not None
         actors = context.snapshot.actors
         # What the fit reads of the actors follows the light and the actors; the fit itself
         # the view too: the same ones give the same answers.
@@ -316,12 +307,12 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         super().release()
         self._companions.release()
 
-    def shading(self, plan: LightPlan) -> LightShading:
+    def shading(self, plan: Cast) -> LightShading:
         """Return how receivers read this light's map.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan.
 
         Returns
@@ -332,7 +323,6 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             one with translucent casters multiplies in what they let through.
         """
         state = self._states[vtk_id(plan.light)]
-        assert plan.settings is not None
         return lookup_shading(
             _kind(plan),
             plan.vtk_index,
@@ -341,12 +331,12 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             translucent=state.companion is not None,
         )
 
-    def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+    def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
         """Bind the light's map and filter textures and return the receivers' uniforms.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan.
         context : FrameContext
             This frame's camera.
@@ -358,7 +348,6 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         """
         state = self._states[vtk_id(plan.light)]
         i = plan.vtk_index
-        assert plan.settings is not None and plan.pose is not None
         uniforms = self._filters.activate(i, plan.settings, state.depth if state.drawn else None)
         if state.companion is not None:
             uniforms.update(self._filters.activate_transmittance(i, state.companion.texture))

@@ -8,7 +8,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
-from pvshadows.model.plan import LightPlan
+from pvshadows.model.plan import Cast
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.snapshot import ActorState
 from pvshadows.scene.triangles import vtk_id
@@ -87,13 +87,13 @@ class PerLightMaps(Generic[StateT, PassT]):
         """Free the texture units bound by ``activate``."""
         self._filters.deactivate()
 
-    def keep_only(self, plans: list[LightPlan]) -> None:
+    def keep_only(self, plans: list[Cast]) -> None:
         """Release the maps of lights that no longer use this technique.
 
         Parameters
         ----------
-        plans : list of LightPlan
-            This frame's plans.
+        plans : list of Cast
+            This frame's casts.
         """
         alive = {vtk_id(p.light) for p in plans if p.technique == self.name}
         for key in set(self._states) - alive:

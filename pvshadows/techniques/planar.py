@@ -36,7 +36,7 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
 from pvshadows.gl.mask_target import MaskTexture
-from pvshadows.model.plan import LightPlan
+from pvshadows.model.plan import Cast, PlanarCast
 from pvshadows.model.report import PassReport
 from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
 from pvshadows.scene.lights import LightKind
@@ -58,12 +58,12 @@ class _LightState:
     active: bool = False
 
 
-def homogeneous_light(plan: LightPlan) -> np.ndarray:
+def homogeneous_light(plan: Cast) -> np.ndarray:
     """Return a planned light as a homogeneous world 4-vector.
 
     Parameters
     ----------
-    plan : LightPlan
+    plan : Cast
         The light's plan (its pose is read).
 
     Returns
@@ -72,7 +72,6 @@ def homogeneous_light(plan: LightPlan) -> np.ndarray:
         ``(position, 1)`` for point and spot lights, ``(direction towards
         the light, 0)`` for directional ones.
     """
-    assert plan.pose is not None
     if plan.pose.kind is LightKind.DIRECTIONAL:
         return np.append(-plan.pose.direction, 0.0)
     return np.append(plan.pose.position, 1.0)
@@ -231,7 +230,7 @@ class PlanarTechnique:
         self._pass = PlanarMaskPass(window)
         self._lights: dict[str, _LightState] = {}
 
-    def _state(self, plan: LightPlan, width: int, height: int) -> _LightState:
+    def _state(self, plan: Cast, width: int, height: int) -> _LightState:
         key = vtk_id(plan.light)
         state = self._lights.get(key)
         if state is not None and state.mask.size != (width, height):
@@ -241,12 +240,12 @@ class PlanarTechnique:
             state = self._lights[key] = _LightState(MaskTexture(self._window, width, height))
         return state
 
-    def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
+    def update(self, plan: PlanarCast, context: FrameContext) -> list[PassReport]:
         """Bring the light's mask up to date for this frame.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan (technique ``"planar"``).
         context : FrameContext
             This frame's renderer, camera, actors, buffers and timer.
@@ -259,7 +258,6 @@ class PlanarTechnique:
         """
         receivers = context.snapshot.receivers
         choice = plan.plane
-        assert choice is not None  # the planner chose the plane
         width, height = context.viewport_size()
         if width < 1 or height < 1:
             state = self._lights.pop(vtk_id(plan.light), None)
@@ -280,9 +278,9 @@ class PlanarTechnique:
         return self._draw(plan, context, state, choice)
 
     def _draw(
-        self, plan: LightPlan, context: FrameContext, state: _LightState, choice: PlaneChoice
+        self, plan: Cast, context: FrameContext, state: _LightState, choice: PlaneChoice
     ) -> list[PassReport]:
-        assert choice.actor is not None and choice.plane is not None and plan.pose is not None
+        assert choice.actor is not None and choice.plane is not None
         light = homogeneous_light(plan)
         plane = facing(choice.plane, light)
         name = choice.actor.name
@@ -337,12 +335,12 @@ class PlanarTechnique:
         state.key, state.frame = key, context.frame
         return [record]
 
-    def shading(self, plan: LightPlan) -> LightShading:
+    def shading(self, plan: Cast) -> LightShading:
         """Return how receivers read this light: the plane its mask, the others facing only.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan.
 
         Returns
@@ -370,12 +368,12 @@ class PlanarTechnique:
             elsewhere=facing_only,
         )
 
-    def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+    def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
         """Bind the light's mask and return the receivers' uniforms.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan.
         context : FrameContext
             This frame's renderer and camera.
@@ -411,13 +409,13 @@ class PlanarTechnique:
         state = self._lights.get(vtk_id(light))
         return state.mask if state else None
 
-    def keep_only(self, plans: list[LightPlan]) -> None:
+    def keep_only(self, plans: list[Cast]) -> None:
         """Release the masks of lights that no longer use planar shadows.
 
         Parameters
         ----------
-        plans : list of LightPlan
-            This frame's plans.
+        plans : list of Cast
+            This frame's casts.
         """
         alive = {vtk_id(p.light) for p in plans if p.technique == self.name}
         for key in set(self._lights) - alive:

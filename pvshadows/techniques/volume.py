@@ -47,7 +47,7 @@ from pvshadows.geometry.silhouette import volume_geometry
 from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.gl.buffers import IndexedBuffers
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
-from pvshadows.model.plan import LightPlan
+from pvshadows.model.plan import Cast, VolumeCast
 from pvshadows.model.report import PassReport
 from pvshadows.passes.volume_stencil import DepthDraw, VolumeDraw, VolumePasses
 from pvshadows.scene.render_target import tiled_viewport
@@ -112,12 +112,12 @@ class VolumeTechnique:
 
     # -- per light ------------------------------------------------------------------------
 
-    def update(self, plan: LightPlan, context: FrameContext) -> list[PassReport]:
+    def update(self, plan: VolumeCast, context: FrameContext) -> list[PassReport]:
         """Bring the light's shadow mask up to date for this frame.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan (technique ``"volume"``).
         context : FrameContext
             This frame's renderer, camera, actors, buffers and timer.
@@ -141,9 +141,8 @@ class VolumeTechnique:
         state = self._lights.get(light_id)
         if state is None:
             state = self._lights[light_id] = _LightState(MaskTexture(self._window, width, height))
-        settings, volume = plan.settings, plan.volume
-        assert settings is not None and plan.pose is not None and volume is not None
-        closed, light, zmode = volume.closed, volume.light, volume.zmode
+        volume = plan.volume
+        closed, light, zmode, extrude = volume.closed, volume.light, volume.zmode, volume.extrude
         reports: list[PassReport] = []
         state.fallback = volume.fallback
         if volume.enclosing is not None:
@@ -156,10 +155,6 @@ class VolumeTechnique:
             else:
                 reports.append(PassReport("shadow mask", "reused", "light still enclosed"))
             return reports + self._fallbacks.update(state.fallback, context)
-        extrude = settings.extrude
-        if extrude == "gpu" and not self._passes.can_extrude_on_gpu():
-            extrude = "cpu"
-            plan.notes.append("the extruding geometry shader does not compile here: cpu extrusion")
         camera = context.view.world_to_clip
         key = (
             plan.pose.key(),
@@ -236,7 +231,7 @@ class VolumeTechnique:
 
     def _volume_draws(
         self,
-        plan: LightPlan,
+        plan: Cast,
         closed: list[tuple[ActorState, VolumeMesh]],
         plan_batches: list[list[tuple]],
         camera: np.ndarray,
@@ -338,7 +333,7 @@ class VolumeTechnique:
 
     def _cpu_volume(
         self,
-        plan: LightPlan,
+        plan: Cast,
         caster: ActorState,
         mesh: VolumeMesh,
         light_model: np.ndarray,
@@ -393,12 +388,12 @@ class VolumeTechnique:
         self._cpu[cache_key] = volume
         return volume
 
-    def shading(self, plan: LightPlan) -> LightShading:
+    def shading(self, plan: Cast) -> LightShading:
         """Return how receivers read this light's mask (and fallback map).
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan.
 
         Returns
@@ -423,12 +418,12 @@ class VolumeTechnique:
         name, subplan = state.fallback
         return combine_shadings(own, self._fallbacks.technique(name).shading(subplan))
 
-    def activate(self, plan: LightPlan, context: FrameContext) -> dict[str, object]:
+    def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
         """Bind the light's mask and return the receivers' uniforms.
 
         Parameters
         ----------
-        plan : LightPlan
+        plan : Cast
             The light's plan.
         context : FrameContext
             This frame's renderer and camera.
@@ -481,18 +476,29 @@ class VolumeTechnique:
         state = self._lights.get(vtk_id(light))
         return state.mask if state else None
 
+    def can_extrude_on_gpu(self) -> bool:
+        """Return whether this window compiles the geometry shader that extrudes volumes.
+
+        Returns
+        -------
+        bool
+            Asked by the planner for lights whose settings want it (tried
+            once per window).
+        """
+        return self._passes.can_extrude_on_gpu()
+
     def zmode_of(self, light: vtk.vtkLight) -> str | None:
         """Return the counting used for a light in its last update: ``"zpass"`` or ``"zfail"``."""
         state = self._lights.get(vtk_id(light))
         return state.zmode if state else None
 
-    def keep_only(self, plans: list[LightPlan]) -> None:
+    def keep_only(self, plans: list[Cast]) -> None:
         """Release the masks of lights that no longer use volumes, and unused volume data.
 
         Parameters
         ----------
-        plans : list of LightPlan
-            This frame's plans.
+        plans : list of Cast
+            This frame's casts.
         """
         using = [p for p in plans if p.technique == self.name]
         alive = {vtk_id(p.light) for p in using}

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import fields
 
 from pvshadows import _vtk as vtk
-from pvshadows.model.plan import LightPlan
+from pvshadows.model.plan import Cast
 from pvshadows.model.report import PassReport
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, Technique
@@ -56,7 +56,7 @@ def combine_shadings(first: LightShading, second: LightShading) -> LightShading:
 
 
 #: A fallback: the technique's name and its plan over the open casters.
-Fallback = tuple[str, LightPlan]
+Fallback = tuple[str, Cast]
 
 
 class OpenCasterFallbacks:
@@ -96,7 +96,7 @@ class OpenCasterFallbacks:
         for technique in self._fallbacks.values():
             technique.deactivate()
 
-    def keep_only(self, plans: list[LightPlan]) -> None:
+    def keep_only(self, plans: list[Cast]) -> None:
         """Release the fallback maps of lights whose plans are not in ``plans``."""
         for technique in self._fallbacks.values():
             technique.keep_only(plans)

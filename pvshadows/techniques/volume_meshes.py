@@ -15,7 +15,7 @@ import numpy as np
 
 from pvshadows.geometry.closed import OpenMeshError
 from pvshadows.geometry.volume_casters import VolumeMesh, batches, prepare_volume_mesh
-from pvshadows.model.plan import LightPlan
+from pvshadows.model.plan import Cast
 from pvshadows.scene.snapshot import ActorState
 from pvshadows.scene.triangles import ActorTriangles
 
@@ -140,14 +140,14 @@ def translucent_batches(
     return result, passing
 
 
-def split_closed(plan: LightPlan) -> tuple[list[tuple[ActorState, VolumeMesh]], list[ActorState]]:
+def split_closed(plan: Cast) -> tuple[list[tuple[ActorState, VolumeMesh]], list[ActorState]]:
     """Sort a volume light's casters into closed ones (with their volume meshes) and open ones.
 
     A caster scaled flat to nothing casts nothing (said in ``plan.notes``).
 
     Parameters
     ----------
-    plan : LightPlan
+    plan : Cast
         The light's plan.
 
     Returns
@@ -170,7 +170,6 @@ def split_closed(plan: LightPlan) -> tuple[list[tuple[ActorState, VolumeMesh]], 
         try:
             closed.append((caster, prepared_mesh(caster.triangles, caster.name)))
         except OpenMeshError as error:
-            assert plan.settings is not None
             if plan.settings.on_open == "raise":
                 require_closed([(caster.name, caster.triangles)])
                 raise error  # pragma: no cover - require_closed raised already
