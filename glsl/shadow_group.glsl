@@ -19,11 +19,10 @@
 //   PVS_GROUP_SIZE           lights in the group (sizes the uniform arrays)
 //   PVS_GROUP_LOOKUP         name of the function defined here
 //   PVS_GROUP_RECEIVER       the kind's receiver function
-//   PVS_GROUP_PACK           uniform mat4[]: columns params, cone, bias (xyz),
-//                            filter (x radius in texels, y taps, z layer in a cube array,
-//                            w the light's index in VTK's lights: its row of
-//                            pvsViewToLight, frame_block.glsl)
-//   PVS_GROUP_CLIP           uniform mat4[]: light space to the spot map's clip space
+//   PVS_GROUP_INDEX          uniform int[]: each light's index in VTK's lights,
+//                            its entry of pvsLights (frame_block.glsl), which holds
+//                            its view-to-light matrix, its pack (params, cone, bias,
+//                            filter) and a spot map's light-to-clip matrix
 //   PVS_GROUP_DEPTH, PVS_GROUP_RAW, PVS_GROUP_OFFSETS   sampler arrays: the maps
 //                            for comparisons, plain views of them (PCSS), disk offsets
 //   PVS_GROUP_TRANSLUCENT    defined for lights whose casters include translucent
@@ -48,18 +47,22 @@
 #define PVS_GROUP_SAMPLER(samplers, j) samplers[j]
 #endif
 
+#define PVS_GROUP_LIGHT(j) pvsLights[PVS_GROUP_INDEX[j]]
+#define PVS_GROUP_VIEW(j) PVS_GROUP_LIGHT(j).viewToLight
+#define PVS_GROUP_PACK(j) PVS_GROUP_LIGHT(j).pack
+#define PVS_GROUP_CLIP(j) PVS_GROUP_LIGHT(j).lightToClip
+
 #if defined(PVS_GROUP_CUBE)
-#define PVS_GROUP_MAP(j) PvsCubeMap(PVS_GROUP_PACK[j][0], PVS_GROUP_PACK[j][1])
+#define PVS_GROUP_MAP(j) PvsCubeMap(PVS_GROUP_PACK(j)[0], PVS_GROUP_PACK(j)[1])
 #elif defined(PVS_GROUP_CUBES)
-#define PVS_GROUP_MAP(j) PvsCubesMap(PVS_GROUP_PACK[j][0], PVS_GROUP_PACK[j][1], PVS_GROUP_PACK[j][3].z)
+#define PVS_GROUP_MAP(j) PvsCubesMap(PVS_GROUP_PACK(j)[0], PVS_GROUP_PACK(j)[1], PVS_GROUP_PACK(j)[3].z)
 #elif defined(PVS_GROUP_SPOT)
-#define PVS_GROUP_MAP(j) PvsSpotMap(PVS_GROUP_CLIP[j], PVS_GROUP_PACK[j][0], PVS_GROUP_PACK[j][1])
+#define PVS_GROUP_MAP(j) PvsSpotMap(PVS_GROUP_CLIP(j), PVS_GROUP_PACK(j)[0], PVS_GROUP_PACK(j)[1])
 #else
-#define PVS_GROUP_MAP(j) PvsSunMap(PVS_GROUP_PACK[j][0])
+#define PVS_GROUP_MAP(j) PvsSunMap(PVS_GROUP_PACK(j)[0])
 #endif
 
-#define PVS_GROUP_TAPS(j) int(PVS_GROUP_PACK[j][3].y)
-#define PVS_GROUP_VIEW(j) pvsViewToLight[int(PVS_GROUP_PACK[j][3].w)]
+#define PVS_GROUP_TAPS(j) int(PVS_GROUP_PACK(j)[3].y)
 
 #if defined(PVS_GROUP_LIT)
 #define PVS_GROUP_FILTER(j, r) PVS_LIT(PVS_GROUP_MAP(j), r)
@@ -71,15 +74,15 @@
 #elif defined(PVS_GROUP_PCF)
 #define PVS_GROUP_FILTER(j, r) PVS_PCF(PVS_GROUP_SAMPLER(PVS_GROUP_DEPTH, j), PVS_GROUP_MAP(j), r, PVS_GROUP_TAPS(j))
 #elif defined(PVS_GROUP_RANDOM)
-#define PVS_GROUP_FILTER(j, r) PVS_RANDOM(PVS_GROUP_SAMPLER(PVS_GROUP_DEPTH, j), PVS_GROUP_MAP(j), r, PVS_GROUP_SAMPLER(PVS_GROUP_OFFSETS, j), PVS_GROUP_TAPS(j), PVS_GROUP_PACK[j][3].x)
+#define PVS_GROUP_FILTER(j, r) PVS_RANDOM(PVS_GROUP_SAMPLER(PVS_GROUP_DEPTH, j), PVS_GROUP_MAP(j), r, PVS_GROUP_SAMPLER(PVS_GROUP_OFFSETS, j), PVS_GROUP_TAPS(j), PVS_GROUP_PACK(j)[3].x)
 #else
 #define PVS_GROUP_FILTER(j, r) PVS_PCSS(PVS_GROUP_SAMPLER(PVS_GROUP_DEPTH, j), PVS_GROUP_SAMPLER(PVS_GROUP_RAW, j), PVS_GROUP_MAP(j), r, PVS_GROUP_SAMPLER(PVS_GROUP_OFFSETS, j), PVS_GROUP_TAPS(j))
 #endif
 
 #if defined(PVS_GROUP_TRANSLUCENT)
-#define PVS_GROUP_ONE(j, visibility) { PvsReceiver receiver = PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW(j), PVS_GROUP_PACK[j][2].xyz, posVC, normalVC); visibility = PVS_GROUP_FILTER(j, receiver) * PVS_TRANSMIT(PVS_GROUP_TRANSMIT[j], PVS_GROUP_MAP(j), receiver); }
+#define PVS_GROUP_ONE(j, visibility) { PvsReceiver receiver = PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW(j), PVS_GROUP_PACK(j)[2].xyz, posVC, normalVC); visibility = PVS_GROUP_FILTER(j, receiver) * PVS_TRANSMIT(PVS_GROUP_TRANSMIT[j], PVS_GROUP_MAP(j), receiver); }
 #else
-#define PVS_GROUP_ONE(j, visibility) visibility = PVS_GROUP_FILTER(j, PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW(j), PVS_GROUP_PACK[j][2].xyz, posVC, normalVC));
+#define PVS_GROUP_ONE(j, visibility) visibility = PVS_GROUP_FILTER(j, PVS_GROUP_RECEIVER(PVS_GROUP_MAP(j), PVS_GROUP_VIEW(j), PVS_GROUP_PACK(j)[2].xyz, posVC, normalVC));
 #endif
 #define PVS_GROUP_GLOBAL(j, visibility) float visibility = 1.0;
 
@@ -115,6 +118,9 @@ void PVS_GROUP_LOOKUP(vec3 posVC, vec3 normalVC)
 #undef PVS_GROUP_MAP
 #undef PVS_GROUP_TAPS
 #undef PVS_GROUP_VIEW
+#undef PVS_GROUP_LIGHT
+#undef PVS_GROUP_PACK
+#undef PVS_GROUP_CLIP
 #undef PVS_GROUP_FILTER
 #undef PVS_GROUP_ONE
 #undef PVS_GROUP_GLOBAL

@@ -107,6 +107,9 @@ def test_moving_the_light_tests_every_actor_once_and_runs_its_pass():
     assert counted["reread"] == 0
     assert counted["cone tests"] == actors
     assert counted["received"] == 0
+    # Its far distance, fit and cone go to the frame's block: no receiver is given a uniform.
+    assert counted["uniforms"] == 0
+    assert counted["block uploads"] == 1
     assert pl.shadows.last_frame.passes_run == 1
 
 

@@ -1,10 +1,11 @@
-"""The receivers' uniform block: what changes with the camera, set once per frame.
+"""The receivers' uniform block: each light's matrices and parameters, set once per frame.
 
-Each light's view-to-light matrix changes whenever the camera moves, and
-every receiver reads it. Held as a per-receiver uniform, a camera move would
-cost one call per receiver and light; held in one uniform buffer
-(``glsl/frame_block.glsl``), it costs one upload per frame whatever the
-number of receivers.
+Each light's view-to-light matrix changes whenever the camera moves, its
+parameters (far distance, texel size, cone, a sun's fit) whenever it or its
+casters move, and every receiver reads them. Held as per-receiver uniforms,
+such a frame would cost one call per receiver and light; held in one uniform
+buffer (``glsl/frame_block.glsl``: one ``PvsLight`` per VTK light index), it
+costs one upload per frame whatever the number of receivers.
 
 The block sits at binding point 0, where GL puts every program's blocks
 until told otherwise: so the very first frame of a receiver, drawn with a
@@ -27,7 +28,7 @@ BINDING = 0
 
 
 class FrameBlock:
-    """One uniform buffer holding every shadowed light's view-to-light matrix.
+    """One uniform buffer holding every shadowed light's ``PvsLight`` entry.
 
     Parameters
     ----------
@@ -47,26 +48,27 @@ class FrameBlock:
         self._data = b""
         self.uploads = 0
 
-    def update(self, matrices: Mapping[int, object]) -> None:
-        """Send this frame's matrices (by VTK light index) and bind the block.
+    def update(self, entries: Mapping[int, np.ndarray]) -> None:
+        """Send this frame's entries (by VTK light index) and bind the block.
 
-        The buffer holds at least 8 rows, and twice the rows asked for
+        The buffer holds at least 8 entries, and twice the entries asked for
         whenever more are: never fewer than any receiver's block declares.
 
         Parameters
         ----------
-        matrices : dict
-            ``(4, 4)`` view-to-light matrices by light index; the rows of
-            other lights are zero.
+        entries : dict
+            ``(3, 4, 4)`` per light index (view-to-light, pack, light-to-clip,
+            :func:`pvshadows.shaders.library.take_light_entries`); the entries
+            of other lights are zero.
         """
         from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData
         from OpenGL.raw.GL.VERSION.GL_3_0 import glBindBufferBase
 
         gl = self._gl
-        self._capacity = max(self._capacity, 2 * (max(matrices, default=-1) + 1))
-        block = np.zeros((self._capacity, 4, 4), dtype=np.float32)
-        for index, matrix in matrices.items():
-            block[index] = np.asarray(matrix).T  # GLSL reads matrices by columns
+        self._capacity = max(self._capacity, 2 * (max(entries, default=-1) + 1))
+        block = np.zeros((self._capacity, 3, 4, 4), dtype=np.float32)
+        for index, entry in entries.items():
+            block[index] = np.swapaxes(entry, 1, 2)  # GLSL reads matrices by columns
         data = block.tobytes()
         if data != self._data:
             gl.glBindBuffer(gl.GL_UNIFORM_BUFFER, self._buffer)

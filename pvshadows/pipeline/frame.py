@@ -30,6 +30,7 @@ from pvshadows.scene.snapshot import SceneReader, Snapshot
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.scene.view import FrameView
 from pvshadows.shaders.edits import ReceiverEdits
+from pvshadows.shaders.library import take_light_entries
 from pvshadows.shaders.shading import PROBE_UNIFORM, LightShading, strength_uniform
 from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.base import FrameContext, Technique
@@ -196,7 +197,8 @@ class RendererShadows:
             self._buffers.keep_only(snapshot.actors)
         self._where = "receiver shader edits"
         assert self._block is not None  # made by _start_gl
-        self._block.update(_take_view_to_light(uniforms))
+        lookups = [lookup for shading in shadings for lookup in shading.needs]
+        self._block.update(take_light_entries(lookups, uniforms))
         self._apply_edits(snapshot, shadings, uniforms, light_space)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
 
@@ -330,16 +332,6 @@ class RendererShadows:
             forget_pointer_records()
         self._techniques.clear()
         self._window = None
-
-
-#: The uniform name of each light's view-to-light matrix, followed by its VTK index.
-_VIEW_TO_LIGHT = "pvsViewToLight"
-
-
-def _take_view_to_light(uniforms: dict[str, object]) -> dict[int, object]:
-    """Remove the lights' view-to-light matrices from ``uniforms``; return them by light index."""
-    names = [name for name in uniforms if name.startswith(_VIEW_TO_LIGHT)]
-    return {int(name[len(_VIEW_TO_LIGHT) :]): uniforms.pop(name) for name in names}
 
 
 def _raised_in(error: Exception) -> str:

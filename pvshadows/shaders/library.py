@@ -113,13 +113,15 @@ TRANSMIT_SAMPLER = "Transmit"
 class MapLookup:
     """One light's read of its shadow map, looked up with the other lights of its group.
 
-    The light's own uniforms (``pvsDepth{i}``, ``pvsTransmit{i}``, ``pvsParams{i}``,
-    ``pvsBias{i}``, ``pvsCone{i}``, ``pvsLightToClip{i}``, ``pvsOffsets{i}``,
-    ``pvsRaw{i}``, ``pvsFilterRadius{i}``) are packed into the group's arrays by
-    :func:`group_uniforms`; its view-to-light matrix (``pvsViewToLight{i}``,
-    which changes with the camera) goes to the frame's uniform block
-    (:class:`pvshadows.gl.frame_block.FrameBlock`) instead; its visibility
-    is the GLSL float :attr:`visibility_name`.
+    The light's sampler units (``pvsDepth{i}``, ``pvsTransmit{i}``,
+    ``pvsOffsets{i}``, ``pvsRaw{i}``) are packed into the group's arrays by
+    :func:`group_uniforms`; what its pose, fit, settings and the camera
+    decide (``pvsViewToLight{i}``, ``pvsParams{i}``, ``pvsBias{i}``,
+    ``pvsCone{i}``, ``pvsLightToClip{i}``, ``pvsFilterRadius{i}``,
+    ``pvsLayer{i}``) goes to its entry of the frame's uniform block
+    (:func:`take_light_entries`, :class:`pvshadows.gl.frame_block.FrameBlock`),
+    so that moving a light or the camera sends nothing to receivers; its
+    visibility is the GLSL float :attr:`visibility_name`.
 
     Attributes
     ----------
@@ -216,8 +218,7 @@ def _group_instance(group: str, lookups: list[MapLookup]) -> str:
         "PVS_GROUP_SIZE": str(len(lookups)),
         "PVS_GROUP_LOOKUP": f"{uniform}Lookup",
         "PVS_GROUP_RECEIVER": f"pvs{first.kind.capitalize()}Receiver",
-        "PVS_GROUP_PACK": f"{uniform}Pack",
-        "PVS_GROUP_CLIP": f"{uniform}LightToClip",
+        "PVS_GROUP_INDEX": f"{uniform}Light",
         "PVS_GROUP_DEPTH": f"{uniform}Depth",
         "PVS_GROUP_RAW": f"{uniform}Raw",
         "PVS_GROUP_OFFSETS": f"{uniform}Offsets",
@@ -360,12 +361,10 @@ def extensions(lookups: Iterable[MapLookup]) -> list[str]:
     return list(dict.fromkeys(EXTENSIONS[m.kind] for m in lookups if m.kind in EXTENSIONS))
 
 
-#: Prefixes of each light's own uniforms, which :func:`group_uniforms` packs.
-OWN_UNIFORMS = (
-    "pvsDepth",
-    "pvsTransmit",
-    "pvsRaw",
-    "pvsOffsets",
+#: Prefixes of each light's own uniforms that go to its entry of the frame's uniform
+#: block (``glsl/frame_block.glsl``), not to receivers: :func:`take_light_entries`.
+BLOCK_UNIFORMS = (
+    "pvsViewToLight",
     "pvsParams",
     "pvsCone",
     "pvsBias",
@@ -373,10 +372,8 @@ OWN_UNIFORMS = (
     "pvsLightToClip",
     "pvsLayer",
 )
-
-
-def _matrices(uniforms: Mapping[str, object], prefix: str, members: list[MapLookup]) -> np.ndarray:
-    return np.stack([np.asarray(uniforms[f"{prefix}{m.vtk_index}"], dtype=float) for m in members])
+#: Prefixes of each light's own uniforms, which :func:`group_uniforms` packs.
+OWN_UNIFORMS = ("pvsDepth", "pvsTransmit", "pvsRaw", "pvsOffsets")
 
 
 def _pack(uniforms: Mapping[str, object], lookup: MapLookup) -> np.ndarray:
@@ -387,7 +384,51 @@ def _pack(uniforms: Mapping[str, object], lookup: MapLookup) -> np.ndarray:
         np.asarray(uniforms.get(f"{name}{i}", (0.0,) * 4), dtype=float)
         for name in ("pvsParams", "pvsCone", "pvsBias")
     ]
-    return np.column_stack([*columns, (radius, lookup.taps, layer, float(i))]).astype(float)
+    return np.column_stack([*columns, (radius, lookup.taps, layer, 0.0)]).astype(float)
+
+
+def take_light_entries(
+    lookups: Iterable[MapLookup], uniforms: dict[str, object]
+) -> dict[int, np.ndarray]:
+    """Remove the lights' block uniforms from ``uniforms``; return each light's block entry.
+
+    Parameters
+    ----------
+    lookups : iterable of MapLookup
+        The map lookups of this frame's lights.
+    uniforms : dict
+        Every light's uniforms by name, as the techniques set them; the
+        names in :data:`BLOCK_UNIFORMS` of the looked-up lights are removed.
+
+    Returns
+    -------
+    dict
+        By VTK light index, ``(3, 4, 4)``: the view-to-light matrix, the
+        pack (columns params, cone, bias, filter) and the light-to-clip
+        matrix (identity but for spot maps), as ``PvsLight`` holds them.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.shaders.library import MapLookup, take_light_entries
+    >>> uniforms = {"pvsViewToLight1": np.eye(4), "pvsParams1": (2, 0, 0, 0), "pvsDepth1": 3}
+    >>> entries = take_light_entries([MapLookup("cube", "pcf", 1, 4)], uniforms)
+    >>> entries[1].shape, entries[1][1][0, 0], uniforms
+    ((3, 4, 4), np.float64(2.0), {'pvsDepth1': 3})
+    """
+    entries = {}
+    for lookup in {lookup.vtk_index: lookup for lookup in lookups}.values():
+        i = lookup.vtk_index
+        entries[i] = np.stack(
+            [
+                np.asarray(uniforms.get(f"pvsViewToLight{i}", np.eye(4)), dtype=float),
+                _pack(uniforms, lookup),
+                np.asarray(uniforms.get(f"pvsLightToClip{i}", np.eye(4)), dtype=float),
+            ]
+        )
+        for name in BLOCK_UNIFORMS:
+            uniforms.pop(f"{name}{i}", None)
+    return entries
 
 
 def group_uniforms(
@@ -400,35 +441,33 @@ def group_uniforms(
     lookups : iterable of MapLookup
         The map lookups of a receiver's lights.
     uniforms : Mapping
-        Every light's uniforms by name, as the techniques set them
-        (``pvsParams{i}`` and so on, see :class:`MapLookup`).
+        Every light's uniforms by name, as the techniques set them, less
+        those :func:`take_light_entries` took for the frame's block
+        (``pvsDepth{i}`` and so on, see :class:`MapLookup`).
 
     Returns
     -------
     dict
         ``uniforms`` without those lights' own uniforms, with each group's
-        arrays: ``list`` of ``int`` for sampler units, ``(n, 4, 4)`` arrays
-        for matrices.
+        arrays: ``list`` of ``int`` for sampler units and for the lights'
+        indices into the frame's block (``pvs{group}Light``).
 
     Examples
     --------
-    >>> import numpy as np
     >>> from pvshadows.shaders.library import MapLookup, group_uniforms
-    >>> own = {"pvsDepth2": 5, "pvsParams2": (1, 0, 0, 0)}
-    >>> packed = group_uniforms([MapLookup("sun", "hard", 2)], {**own, "pvsProbeLight": -1})
+    >>> own = {"pvsDepth2": 5, "pvsProbeLight": -1}
+    >>> packed = group_uniforms([MapLookup("sun", "hard", 2)], own)
     >>> sorted(packed)
-    ['pvsProbeLight', 'pvsSunHardDepth', 'pvsSunHardPack']
-    >>> packed["pvsSunHardDepth"], packed["pvsSunHardPack"].shape
-    ([5], (1, 4, 4))
+    ['pvsProbeLight', 'pvsSunHardDepth', 'pvsSunHardLight']
+    >>> packed["pvsSunHardDepth"], packed["pvsSunHardLight"]
+    ([5], [2])
     """
     groups = _groups(lookups)
     taken = {f"{name}{m.vtk_index}" for ms in groups.values() for m in ms for name in OWN_UNIFORMS}
     packed: dict[str, object] = {k: v for k, v in uniforms.items() if k not in taken}
     for group, members in groups.items():
         name = f"pvs{group}"
-        packed[f"{name}Pack"] = np.stack([_pack(uniforms, m) for m in members])
-        if members[0].kind == "spot":
-            packed[f"{name}LightToClip"] = _matrices(uniforms, "pvsLightToClip", members)
+        packed[f"{name}Light"] = [m.vtk_index for m in members]
         units = {
             part: [int(cast(int, uniforms[f"pvs{part}{m.vtk_index}"])) for m in members]
             for part in members[0].samplers
