@@ -147,3 +147,21 @@ def test_a_sun_reads_its_actors_once_while_only_the_camera_moves():
     scene.light.position = (4.0, 2.0, 8.0)
     draw(pl)
     assert state.sun_actors[2] is not read
+
+
+def test_moving_one_of_two_lights_plans_and_draws_that_light_only():
+    scene = standard_scene(window_size=(320, 240), light="spot")
+    pl = scene.plotter
+    pl.add_light(pv.Light(position=(-2, 2, 4), positional=True, cone_angle=50, intensity=0.5))
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    assert [plan.technique for plan in shadows.plans].count("map") == 2
+    kept = shadows.plans[1]
+    planned = shadows.memo.planned
+    x, y, z = scene.light.position
+    scene.light.position = (x + 0.05, y, z)
+    draw(pl)
+    assert shadows.memo.planned - planned == 1
+    assert shadows.plans[1] is kept  # the other light's plan, and so its map, are kept
+    assert pl.shadows.last_frame.passes_run == 1

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import replace
+from functools import cached_property
 
 import numpy as np
 
@@ -77,63 +78,72 @@ def _technique_for(
 
 
 class PlanMemo:
-    """Last frame's plans and what they were made from, kept between frames.
+    """Last frame's plan of each light and what it was made from, kept between frames.
 
-    Plans depend on the actors (the snapshot), the lights and their settings,
-    and which receivers the camera sees. When none of these changed, the
-    frame keeps last frame's plans; only what the camera alone decides (a
-    volume light's z-pass or z-fail) is chosen again.
+    A light's plan depends on the actors (the snapshot), the light and its
+    settings, its place among the lights, and which receivers the camera
+    sees. A light whose inputs are last frame's keeps last frame's plan
+    (only what the camera alone decides, a volume light's z-pass or z-fail,
+    is chosen again): a frame in which only the camera moved plans nothing,
+    and one in which one light moved plans that light only.
 
     Attributes
     ----------
     kept : int
-        Frames that kept last frame's plans.
+        Frames that kept every light's plan.
     made : int
-        Frames that planned every light again.
+        Frames that planned some light again.
+    planned : int
+        Lights planned again, over all frames.
     """
 
     def __init__(self) -> None:
         self.kept = 0
         self.made = 0
-        self._snapshot: Snapshot | None = None
-        self._lights: list[tuple] = []
-        self._seen = b""
-        self._plans: list[LightPlan] = []
-        self._planned: list[int] = []
+        self.planned = 0
+        self._plans: dict[int, tuple[tuple, LightPlan, int]] = {}
 
     def forget(self) -> None:
         """Plan every light again next frame."""
-        self._snapshot, self._plans = None, []
+        self._plans = {}
 
-    def recall(self, snapshot: Snapshot, lights: list[tuple], seen: bytes) -> list | None:
-        """Return last frame's plans if they were made from the same inputs, else ``None``.
+    def recall(self, inputs: tuple) -> LightPlan | None:
+        """Return a light's last plan if it was made from the same ``inputs``, else ``None``.
 
-        ``lights`` holds ``(light, modification time, settings)`` per light;
-        ``seen`` which receivers the camera sees. The plans come back with
-        the planner's notes only: what techniques and the frame added to
-        them last frame is said again this frame.
+        ``inputs`` are ``(light, modification time, settings, index,
+        VTK index, snapshot, receivers seen)``. The plan comes back with the
+        planner's notes only: what techniques and the frame added to them
+        last frame is said again this frame.
         """
-        same = (
-            snapshot is self._snapshot
-            and seen == self._seen
-            and len(lights) == len(self._lights)
-            and all(
-                a[0] is b[0] and a[1] == b[1] and (a[2] is b[2] or a[2] == b[2])
-                for a, b in zip(lights, self._lights, strict=True)
-            )
-        )
-        if not same:
+        kept = self._plans.get(id(inputs[0]))
+        if kept is None or not _same_inputs(kept[0], inputs):
             return None
-        for plan, planned in zip(self._plans, self._planned, strict=True):
-            del plan.notes[planned:]
-        return self._plans
+        plan, planned = kept[1], kept[2]
+        del plan.notes[planned:]
+        return plan
 
-    def keep(
-        self, snapshot: Snapshot, lights: list[tuple], seen: bytes, plans: list[LightPlan]
-    ) -> None:
-        """Keep this frame's plans and what they were made from."""
-        self._snapshot, self._lights, self._seen, self._plans = snapshot, lights, seen, plans
-        self._planned = [len(plan.notes) for plan in plans]
+    def keep(self, inputs: tuple, plan: LightPlan) -> None:
+        """Keep a light's plan of this frame and what it was made from."""
+        self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes))
+
+    def keep_only(self, plans: list[LightPlan]) -> None:
+        """Forget the lights that are no longer the renderer's."""
+        alive = {id(plan.light) for plan in plans}
+        for key in set(self._plans) - alive:
+            del self._plans[key]
+
+
+def _same_inputs(a: tuple, b: tuple) -> bool:
+    light, time, settings, index, vtk_index, snapshot, seen = a
+    return (
+        light is b[0]
+        and time == b[1]
+        and (settings is b[2] or settings == b[2])
+        and index == b[3]
+        and vtk_index == b[4]
+        and snapshot is b[5]
+        and seen == b[6]
+    )
 
 
 def plan_frame(
@@ -166,9 +176,8 @@ def plan_frame(
         Open casters of volume lights already warned about, kept between
         frames so each warns once (:func:`pvshadows.pipeline.volume_plan.plan_volume`).
     memo : PlanMemo, optional
-        Last frame's plans: returned again (the same list) when the actors,
-        the lights, their settings and the receivers in view are last
-        frame's.
+        Last frame's plans: a light's is kept when the actors, the light,
+        its settings and the receivers in view are last frame's.
     extrude_on_gpu : callable, optional
         Tells whether the window compiles the geometry shader that extrudes
         shadow volumes (asked only when a volume light's settings want it);
@@ -183,92 +192,131 @@ def plan_frame(
     collection = renderer.GetLights()
     collection.InitTraversal()
     lights = [collection.GetNextItem() for _ in range(collection.GetNumberOfItems())]
-    stamps = [(light, light.GetMTime(), settings_for(light)) for light in lights]
     view = FrameView.of(renderer) if view is None else view
     in_view = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
-    if memo is not None:
-        kept = memo.recall(snapshot, stamps, in_view.tobytes())
-        if kept is not None:
-            memo.kept += 1
-            for plan in kept:
-                if isinstance(plan.cast, VolumeCast):
-                    choose_volume_zmode(plan.cast, plan.cast.volume, renderer)
-            return kept
-        memo.made += 1
+    seen_key = in_view.tobytes()
     plans = []
     vtk_index = 0
     reach = ReachCache() if reach is None else reach
     warned = set() if warned is None else warned
-    casters = snapshot.casters
-    seen = [r for r, shown in zip(snapshot.receivers, in_view, strict=True) if shown]
-    only_a_plane = sole_plane(snapshot.receivers) is not None
-    plane: PlaneChoice | None = None  # the receiving plane of planar lights, chosen once
-    for index, (light, _, settings) in enumerate(stamps):
-        plan = LightPlan(light, index, vtk_index, light_kind(light), settings)
+    gpu = extrude_on_gpu if extrude_on_gpu is not None else lambda: True
+    shared = _Shared(snapshot, in_view)
+    planned = 0
+    for index, light in enumerate(lights):
+        inputs = (
+            light, light.GetMTime(), settings_for(light), index, vtk_index, snapshot, seen_key
+        )  # fmt: skip
+        plan = memo.recall(inputs) if memo is not None else None
+        if plan is None:
+            plan = _plan_light(renderer, shared, inputs, reach, warned, gpu)
+            planned += 1
+            if memo is not None:
+                memo.keep(inputs, plan)
+        elif isinstance(plan.cast, VolumeCast):
+            choose_volume_zmode(plan.cast, plan.cast.volume, renderer)
         if light.GetSwitch():
             vtk_index += 1
         plans.append(plan)
-        if settings is None:
-            plan.notes.append(unshadowed_reason(light, renderer))
-            continue
-        if not casts_light(light):
-            plan.notes.append(
-                "the light is off or has zero intensity: it casts nothing and costs nothing"
-            )
-            continue
-        if settings.strength == 0.0:
-            plan.notes.append("strength=0: its shadows would remove nothing, so none is drawn")
-            continue
-        if light.LightTypeIsHeadlight():
-            plan.notes.append(
-                "a headlight's shadows hide behind the objects that cast them: none drawn"
-            )
-            continue
-        try:
-            pose = light_pose(light)
-        except ValueError as error:
-            plan.notes.append(f"casts nothing: {error}")
-            continue
-        technique, why = _technique_for(plan.kind, settings, only_a_plane)
-        key = vtk_id(light)
-        reached = [r for r, hit in zip(seen, reach.reaches(key, pose, seen), strict=True) if hit]
-        if not reached:
-            plan.notes.append(
-                "no receiver the camera sees is in the light's reach: it casts nothing and "
-                "costs nothing"
-                if seen
-                else "the camera sees no receiver: the light casts nothing and costs nothing"
-            )
-            continue
-        within = [
-            c for c, hit in zip(casters, reach.reaches(key, pose, casters), strict=True) if hit
-        ]
-        if not within:
-            plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
-            continue
-        plan.notes.append(why)
-        if technique == "cubemap" and pose.kind is LightKind.POINT:
-            technique, pose = _fit_far_point(pose, within, plan.notes)
-        elif technique == "map" and pose.kind is LightKind.SPOT:
-            pose = _fit_far_spot(pose, within, seen, plan.notes)
-        if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
-            plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
-        cast = Cast(
-            light, index, plan.vtk_index, plan.kind, settings, technique, pose, within, plan.notes
-        )
-        if technique == "volume":
-            gpu = extrude_on_gpu if extrude_on_gpu is not None else lambda: True
-            cast = _volume_cast(cast, plan_volume(cast, renderer, snapshot, warned, gpu))
-        elif technique == "planar":
-            if plane is None:
-                plane = choose_plane(snapshot.receivers)
-            cast = _planar_cast(cast, plane)
-            plan.notes.append(plane.reason)
-        plan.cast = cast
     reach.keep_only({vtk_id(plan.light) for plan in plans}, snapshot.actors)
     if memo is not None:
-        memo.keep(snapshot, stamps, in_view.tobytes(), plans)
+        memo.keep_only(plans)
+        memo.planned += planned
+        if planned:
+            memo.made += 1
+        else:
+            memo.kept += 1
     return plans
+
+
+class _Shared:
+    """What the lights planned in one frame share, worked out once when first asked."""
+
+    def __init__(self, snapshot: Snapshot, in_view: np.ndarray) -> None:
+        self.snapshot = snapshot
+        self._in_view = in_view
+
+    @cached_property
+    def seen(self) -> list[ActorState]:
+        """The receivers the camera sees."""
+        receivers = self.snapshot.receivers
+        return [r for r, shown in zip(receivers, self._in_view, strict=True) if shown]
+
+    @cached_property
+    def only_a_plane(self) -> bool:
+        """Whether the only receiver is one plane."""
+        return sole_plane(self.snapshot.receivers) is not None
+
+    @cached_property
+    def plane(self) -> PlaneChoice:
+        """The receiving plane of planar lights."""
+        return choose_plane(self.snapshot.receivers)
+
+
+def _plan_light(
+    renderer: vtk.vtkRenderer,
+    shared: _Shared,
+    inputs: tuple,
+    reach: ReachCache,
+    warned: set[tuple],
+    extrude_on_gpu: Callable[[], bool],
+) -> LightPlan:
+    """Plan one light (``inputs`` as :meth:`PlanMemo.recall` takes them)."""
+    light, _, settings, index, vtk_index, _, _ = inputs
+    plan = LightPlan(light, index, vtk_index, light_kind(light), settings)
+    snapshot = shared.snapshot
+    if settings is None:
+        plan.notes.append(unshadowed_reason(light, renderer))
+        return plan
+    if not casts_light(light):
+        plan.notes.append(
+            "the light is off or has zero intensity: it casts nothing and costs nothing"
+        )
+        return plan
+    if settings.strength == 0.0:
+        plan.notes.append("strength=0: its shadows would remove nothing, so none is drawn")
+        return plan
+    if light.LightTypeIsHeadlight():
+        plan.notes.append(
+            "a headlight's shadows hide behind the objects that cast them: none drawn"
+        )
+        return plan
+    try:
+        pose = light_pose(light)
+    except ValueError as error:
+        plan.notes.append(f"casts nothing: {error}")
+        return plan
+    technique, why = _technique_for(plan.kind, settings, shared.only_a_plane)
+    key, seen, casters = vtk_id(light), shared.seen, snapshot.casters
+    reached = [r for r, hit in zip(seen, reach.reaches(key, pose, seen), strict=True) if hit]
+    if not reached:
+        plan.notes.append(
+            "no receiver the camera sees is in the light's reach: it casts nothing and "
+            "costs nothing"
+            if seen
+            else "the camera sees no receiver: the light casts nothing and costs nothing"
+        )
+        return plan
+    within = [c for c, hit in zip(casters, reach.reaches(key, pose, casters), strict=True) if hit]
+    if not within:
+        plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
+        return plan
+    plan.notes.append(why)
+    if technique == "cubemap" and pose.kind is LightKind.POINT:
+        technique, pose = _fit_far_point(pose, within, plan.notes)
+    elif technique == "map" and pose.kind is LightKind.SPOT:
+        pose = _fit_far_spot(pose, within, seen, plan.notes)
+    if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
+        plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
+    cast = Cast(
+        light, index, plan.vtk_index, plan.kind, settings, technique, pose, within, plan.notes
+    )
+    if technique == "volume":
+        cast = _volume_cast(cast, plan_volume(cast, renderer, snapshot, warned, extrude_on_gpu))
+    elif technique == "planar":
+        cast = _planar_cast(cast, shared.plane)
+        plan.notes.append(shared.plane.reason)
+    plan.cast = cast
+    return plan
 
 
 def _volume_cast(cast: Cast, volume: VolumePlan) -> VolumeCast:
