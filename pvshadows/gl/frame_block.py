@@ -17,14 +17,36 @@ start of each of the renderer's frames, after pvshadows' own passes.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import NamedTuple
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 
+_EYE = np.eye(4)
 #: The uniform buffer binding point of the block: every program's default.
 BINDING = 0
+
+
+class LightEntry(NamedTuple):
+    """One light's ``PvsLight`` entry of the frame's uniform block (``glsl/frame_block.glsl``).
+
+    Attributes
+    ----------
+    view_to_light : numpy.ndarray
+        ``(4, 4)``: view coordinates to the light's space.
+    pack : tuple
+        The four columns of the pack: params, cone, bias and filter
+        (radius in texels, taps, layer in a cube array, 0).
+    light_to_clip : numpy.ndarray or None
+        ``(4, 4)``: light space to a spot map's clip space; ``None`` for
+        the identity.
+    """
+
+    view_to_light: np.ndarray
+    pack: tuple
+    light_to_clip: np.ndarray | None
 
 
 class FrameBlock:
@@ -48,7 +70,7 @@ class FrameBlock:
         self._data = b""
         self.uploads = 0
 
-    def update(self, entries: Mapping[int, np.ndarray]) -> None:
+    def update(self, entries: Mapping[int, LightEntry]) -> None:
         """Send this frame's entries (by VTK light index) and bind the block.
 
         The buffer holds at least 8 entries, and twice the entries asked for
@@ -57,9 +79,9 @@ class FrameBlock:
         Parameters
         ----------
         entries : dict
-            ``(3, 4, 4)`` per light index (view-to-light, pack, light-to-clip,
-            :func:`pvshadows.shaders.library.take_light_entries`); the entries
-            of other lights are zero.
+            Each light's entry by its index
+            (:func:`pvshadows.shaders.library.take_light_entries`); the
+            entries of other lights are zero.
         """
         from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData
         from OpenGL.raw.GL.VERSION.GL_3_0 import glBindBufferBase
@@ -67,8 +89,11 @@ class FrameBlock:
         gl = self._gl
         self._capacity = max(self._capacity, 2 * (max(entries, default=-1) + 1))
         block = np.zeros((self._capacity, 3, 4, 4), dtype=np.float32)
-        for index, entry in entries.items():
-            block[index] = np.swapaxes(entry, 1, 2)  # GLSL reads matrices by columns
+        # GLSL reads matrices by columns: each stored matrix is the transpose
+        for index, (view_to_light, pack, light_to_clip) in entries.items():
+            block[index, 0] = view_to_light.T
+            block[index, 1] = pack
+            block[index, 2] = _EYE if light_to_clip is None else light_to_clip.T
         data = block.tobytes()
         if data != self._data:
             gl.glBindBuffer(gl.GL_UNIFORM_BUFFER, self._buffer)

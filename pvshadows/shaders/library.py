@@ -23,6 +23,7 @@ from typing import cast
 
 import numpy as np
 
+from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.programs import glsl_source
 
 #: Kinds of depth map and the GLSL names the filter file uses for each. "cubes"
@@ -376,20 +377,12 @@ BLOCK_UNIFORMS = (
 OWN_UNIFORMS = ("pvsDepth", "pvsTransmit", "pvsRaw", "pvsOffsets")
 
 
-def _pack(uniforms: Mapping[str, object], lookup: MapLookup) -> np.ndarray:
-    i = lookup.vtk_index
-    radius = float(cast(float, uniforms.get(f"pvsFilterRadius{i}", 0.0)))
-    layer = float(cast(float, uniforms.get(f"pvsLayer{i}", 0.0)))
-    columns = [
-        np.asarray(uniforms.get(f"{name}{i}", (0.0,) * 4), dtype=float)
-        for name in ("pvsParams", "pvsCone", "pvsBias")
-    ]
-    return np.column_stack([*columns, (radius, lookup.taps, layer, 0.0)]).astype(float)
+_NO_VECTOR = (0.0, 0.0, 0.0, 0.0)
 
 
 def take_light_entries(
     lookups: Iterable[MapLookup], uniforms: dict[str, object]
-) -> dict[int, np.ndarray]:
+) -> dict[int, LightEntry]:
     """Remove the lights' block uniforms from ``uniforms``; return each light's block entry.
 
     Parameters
@@ -403,9 +396,7 @@ def take_light_entries(
     Returns
     -------
     dict
-        By VTK light index, ``(3, 4, 4)``: the view-to-light matrix, the
-        pack (columns params, cone, bias, filter) and the light-to-clip
-        matrix (identity but for spot maps), as ``PvsLight`` holds them.
+        Each light's :class:`LightEntry`, by VTK light index.
 
     Examples
     --------
@@ -413,21 +404,26 @@ def take_light_entries(
     >>> from pvshadows.shaders.library import MapLookup, take_light_entries
     >>> uniforms = {"pvsViewToLight1": np.eye(4), "pvsParams1": (2, 0, 0, 0), "pvsDepth1": 3}
     >>> entries = take_light_entries([MapLookup("cube", "pcf", 1, 4)], uniforms)
-    >>> entries[1].shape, entries[1][1][0, 0], uniforms
-    ((3, 4, 4), np.float64(2.0), {'pvsDepth1': 3})
+    >>> entries[1].pack[0], entries[1].pack[3], uniforms
+    ((2, 0, 0, 0), (0.0, 4, 0.0, 0.0), {'pvsDepth1': 3})
     """
     entries = {}
     for lookup in {lookup.vtk_index: lookup for lookup in lookups}.values():
         i = lookup.vtk_index
-        entries[i] = np.stack(
-            [
-                np.asarray(uniforms.get(f"pvsViewToLight{i}", np.eye(4)), dtype=float),
-                _pack(uniforms, lookup),
-                np.asarray(uniforms.get(f"pvsLightToClip{i}", np.eye(4)), dtype=float),
-            ]
+        taken = {name: uniforms.pop(f"{name}{i}", None) for name in BLOCK_UNIFORMS}
+        radius, layer = taken["pvsFilterRadius"], taken["pvsLayer"]
+        pack = (
+            _NO_VECTOR if taken["pvsParams"] is None else taken["pvsParams"],
+            _NO_VECTOR if taken["pvsCone"] is None else taken["pvsCone"],
+            _NO_VECTOR if taken["pvsBias"] is None else taken["pvsBias"],
+            (radius or 0.0, lookup.taps, layer or 0.0, 0.0),
         )
-        for name in BLOCK_UNIFORMS:
-            uniforms.pop(f"{name}{i}", None)
+        view = taken["pvsViewToLight"]
+        entries[i] = LightEntry(
+            np.eye(4) if view is None else cast(np.ndarray, view),
+            pack,
+            cast("np.ndarray | None", taken["pvsLightToClip"]),
+        )
     return entries
 
 
