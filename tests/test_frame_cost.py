@@ -12,6 +12,7 @@ def counters(pl):
     shadows = pl.shadows._renderers[0]
     return {
         "reread": pl.shadows._reader.reread,
+        "compared": pl.shadows._reader.compared,
         "cone tests": shadows.reach.tests,
         "edits": shadows._edits.edited,
         "received": shadows._edits.received,
@@ -77,6 +78,7 @@ def test_moving_one_actor_rereads_and_tests_that_actor_only():
     moved.AddPosition(0.01, 0.0, 0.0)
     draw(pl)
     counted = change(before, counters(pl))
+    assert counted["compared"] == 1  # of 200 actors, only the one whose times moved
     assert counted["reread"] == 1
     assert counted["cone tests"] == 1
     assert counted["edits"] == 1

@@ -13,6 +13,9 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 
+#: ``GL_UNSIGNED_INT``, the type of every index buffer here.
+_UNSIGNED_INT = 0x1405
+
 
 def _pointer(array: np.ndarray) -> ctypes.c_void_p | None:
     return ctypes.c_void_p(array.ctypes.data) if array.size else None
@@ -83,10 +86,13 @@ class IndexedBuffers:
         """
         if count <= 0:
             return
-        gl = self._gl
-        gl.glBindVertexArray(self._array_for(program.FindAttributeArray("position")))
-        gl.glDrawElements(mode, count, gl.GL_UNSIGNED_INT, ctypes.c_void_p(4 * first))
-        gl.glBindVertexArray(0)
+        # The raw entry points: PyOpenGL's wrappers cost more than the draw call itself.
+        from OpenGL.raw.GL.VERSION.GL_1_1 import glDrawElements
+        from OpenGL.raw.GL.VERSION.GL_3_0 import glBindVertexArray
+
+        glBindVertexArray(self._array_for(program.FindAttributeArray("position")))
+        glDrawElements(mode, count, _UNSIGNED_INT, ctypes.c_void_p(4 * first))
+        glBindVertexArray(0)
 
     def release(self) -> None:
         """Delete the buffers and vertex arrays (the context must be current)."""

@@ -14,7 +14,7 @@ from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.report import PassReport
-from pvshadows.passes.gl_state import cull_faces, depth_only_state
+from pvshadows.passes.gl_state import FaceCulling, depth_only_state
 
 
 @dataclass
@@ -128,6 +128,7 @@ class CubeDepthPass:
         with depth_only_state(self._window):
             bind_program(self._window, program)
             program.SetUniformf("invFar", 1.0 / far)
+            cull = FaceCulling(self._window)
             if passes == "single":
                 record = PassReport(
                     "cube depth (six faces, one draw)", "run", _faces_text(face_mask)
@@ -142,7 +143,7 @@ class CubeDepthPass:
                         program.SetUniformMatrix4x4v(
                             "modelToLight", 1, column_major(caster.model_to_light)
                         )
-                        cull_faces(self._window, caster.cull)
+                        cull(caster.cull)
                         caster.buffers.draw_triangles(program)
             else:
                 for face in range(6):
@@ -165,7 +166,7 @@ class CubeDepthPass:
                             program.SetUniformMatrix4x4v(
                                 "modelToLight", 1, column_major(caster.model_to_light)
                             )
-                            cull_faces(self._window, caster.cull)
+                            cull(caster.cull)
                             caster.buffers.draw_triangles(program)
         return records
 

@@ -60,23 +60,31 @@ def _offscreen_pass(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
         state.Pop()
 
 
-def cull_faces(window: vtk.vtkOpenGLRenderWindow, side: str | None) -> None:
-    """Cull one side of the next triangles drawn, or none.
+class FaceCulling:
+    """Culls one side of the triangles drawn next, or none, calling GL only on a change.
 
     Parameters
     ----------
     window : vtk.vtkOpenGLRenderWindow
         The window whose context draws.
-    side : {"front", "back"} or None
-        The side to cull; ``None`` draws both.
     """
-    gl = opengl_for(window)
-    state = window.GetState()
-    if side is None:
-        state.vtkglDisable(gl.GL_CULL_FACE)
-    else:
-        state.vtkglEnable(gl.GL_CULL_FACE)
-        state.vtkglCullFace(gl.GL_FRONT if side == "front" else gl.GL_BACK)
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._gl = opengl_for(window)
+        self._state = window.GetState()
+        self._side: str | bool | None = False  # neither a side nor None: not set yet
+
+    def __call__(self, side: str | None) -> None:
+        """Cull ``side`` (``"front"`` or ``"back"``) of the next triangles, or none (``None``)."""
+        if side == self._side:
+            return
+        gl, state = self._gl, self._state
+        if side is None:
+            state.vtkglDisable(gl.GL_CULL_FACE)
+        else:
+            state.vtkglEnable(gl.GL_CULL_FACE)
+            state.vtkglCullFace(gl.GL_FRONT if side == "front" else gl.GL_BACK)
+        self._side = side
 
 
 @contextmanager

@@ -13,7 +13,7 @@ from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthMap
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.report import PassReport
-from pvshadows.passes.gl_state import cull_faces, depth_only_state
+from pvshadows.passes.gl_state import FaceCulling, depth_only_state
 
 
 @dataclass
@@ -100,9 +100,10 @@ class MapDepthPass:
             bind_program(self._window, program)
             program.SetUniformf("invFar", 1.0 / depth_range)
             program.SetUniformMatrix4x4v("lightToClip", 1, column_major(light_to_clip))
+            cull = FaceCulling(self._window)
             for caster in casters:
                 program.SetUniformMatrix4x4v("modelToLight", 1, column_major(caster.model_to_light))
-                cull_faces(self._window, caster.cull)
+                cull(caster.cull)
                 caster.buffers.draw_triangles(program)
         return [report]
 

@@ -204,6 +204,9 @@ class SceneReader:
         self.problems: dict[str, str] = {}
         #: How many actors were read again (stamp changed) since the reader was made.
         self.reread = 0
+        #: How many actors' stamps were compared (their times moved, or every actor's
+        #: when the actor list or the roles changed).
+        self.compared = 0
 
     def set_casting(self, key: str, cast: bool, transmittance: float | None) -> None:
         """Set whether the actor ``key`` casts, and the share of light it lets through.
@@ -320,27 +323,32 @@ class SceneReader:
             cache.props = props
             cache.times = None
         times = _times(cache.actors, cache.mappers, cache.datas)
-        if (
-            times is not None
-            and times == cache.times
-            and cache.roles == self.roles
-            and (cache.camera == camera or not cache.followers)
-            and cache.snapshot is not None
-        ):
+        same_roles = cache.roles == self.roles and (cache.camera == camera or not cache.followers)
+        if times is None or cache.times is None or not same_roles or cache.snapshot is None:
+            return self._read_changed(cache, camera, None)
+        if times == cache.times:
             cache.camera = camera
             return cache.snapshot
-        return self._read_changed(cache, camera)
+        # Only the actors whose times moved can have changed.
+        moved = (np.array(times) != np.array(cache.times)).any(axis=0)
+        return self._read_changed(cache, camera, set(np.flatnonzero(moved).tolist()))
 
-    def _read_changed(self, cache: _RendererCache, camera: int) -> Snapshot:
-        """Compare each actor's stamp; read again those that changed."""
+    def _read_changed(
+        self, cache: _RendererCache, camera: int, suspects: set[int] | None
+    ) -> Snapshot:
+        """Read again the actors that changed, among ``suspects`` (indices; ``None``: all)."""
         entries: dict[int, _Entry] = {}
         changed = []
-        for actor in cache.actors:
+        self.compared += len(cache.actors) if suspects is None else len(suspects)
+        for index, actor in enumerate(cache.actors):
             entry = cache.entries.get(id(actor))
             if (
                 entry is None
                 or entry.actor is not actor
-                or entry.stamp != self._stamp(entry, camera)
+                or (
+                    (suspects is None or index in suspects)
+                    and entry.stamp != self._stamp(entry, camera)
+                )
             ):
                 entry = self._entry(actor, camera)
                 changed.append(entry.key)
