@@ -72,11 +72,8 @@ class VolumePlan:
 
 
 @dataclass
-class Cast:
-    """What one shadowed light draws in one frame: every field is set.
-
-    The planner makes one for each light that casts, and techniques only
-    draw it.
+class LightSlot:
+    """A light and its places: what every plan and cast of a light starts from.
 
     Attributes
     ----------
@@ -88,6 +85,23 @@ class Cast:
         Its index among switched-on lights, as VTK's shaders number them.
     kind : LightKind
         Point, spot or directional, as the user set it up.
+    """
+
+    light: vtk.vtkLight
+    index: int
+    vtk_index: int
+    kind: LightKind
+
+
+@dataclass
+class Cast(LightSlot):
+    """What one shadowed light draws in one frame: every field is set.
+
+    The planner makes one for each light that casts, and techniques only
+    draw it. Besides the :class:`LightSlot`'s:
+
+    Attributes
+    ----------
     settings : ShadowSettings
         Its settings.
     technique : str
@@ -101,10 +115,6 @@ class Cast:
         Decisions in words (the same list as its :class:`LightPlan`'s).
     """
 
-    light: vtk.vtkLight
-    index: int
-    vtk_index: int
-    kind: LightKind
     settings: ShadowSettings
     technique: str
     pose: LightPose
@@ -140,19 +150,13 @@ class PlanarCast(Cast):
 
 
 @dataclass
-class LightPlan:
+class LightPlan(LightSlot):
     """What one light does in one frame, whether or not it casts.
+
+    Besides the :class:`LightSlot`'s:
 
     Attributes
     ----------
-    light : vtk.vtkLight
-        The light.
-    index : int
-        Its position in the renderer's light list.
-    vtk_index : int
-        Its index among switched-on lights, as VTK's shaders number them.
-    kind : LightKind
-        Point, spot or directional.
     settings : ShadowSettings or None
         Its settings, ``None`` when shadows are not enabled for it.
     notes : list of str
@@ -161,10 +165,6 @@ class LightPlan:
         What it draws; ``None`` when it casts no shadow (the notes say why).
     """
 
-    light: vtk.vtkLight
-    index: int
-    vtk_index: int
-    kind: LightKind
     settings: ShadowSettings | None
     notes: list[str] = field(default_factory=list)
     cast: Cast | None = None

@@ -15,8 +15,9 @@ faces without casters) it reports in the same frame's words.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import fields, replace
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 
@@ -320,19 +321,15 @@ def _plan_light(
 
 
 def _volume_cast(cast: Cast, volume: VolumePlan) -> VolumeCast:
-    c = cast
-    return VolumeCast(
-        c.light, c.index, c.vtk_index, c.kind, c.settings, c.technique, c.pose, c.casters, c.notes,
-        volume,
-    )  # fmt: skip
+    return VolumeCast(**_fields_of(cast), volume=volume)
 
 
 def _planar_cast(cast: Cast, plane: PlaneChoice) -> PlanarCast:
-    c = cast
-    return PlanarCast(
-        c.light, c.index, c.vtk_index, c.kind, c.settings, c.technique, c.pose, c.casters, c.notes,
-        plane,
-    )  # fmt: skip
+    return PlanarCast(**_fields_of(cast), plane=plane)
+
+
+def _fields_of(cast: Cast) -> dict[str, Any]:
+    return {f.name: getattr(cast, f.name) for f in fields(Cast)}
 
 
 def _casters_seen_from(
