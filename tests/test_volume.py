@@ -245,7 +245,7 @@ def test_directional_fallback_hook(monkeypatch):
             return []
 
         def shading(self, plan):
-            return LightShading(plan.vtk_index, "pvsStub", sources=("shadow_volume.glsl",))
+            return LightShading(plan.vtk_index, "pvsStub", sources=("shadow_mask.glsl",))
 
         def activate(self, plan, context):
             return {}

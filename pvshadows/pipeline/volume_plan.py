@@ -26,7 +26,6 @@ from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.volume_light import (
     enclosing_caster,
     holds_the_rest,
-    homogeneous_light,
     off_surfaces,
 )
 from pvshadows.techniques.volume_meshes import HOW_COUNTED, open_reason, split_closed
@@ -69,7 +68,7 @@ def plan_volume(
     """
     closed, open_casters = split_closed(plan)
     fallback = _fallback(plan, open_casters, warned)
-    light = off_surfaces(homogeneous_light(plan), closed, plan.notes)
+    light = off_surfaces(plan.pose.homogeneous(), closed, plan.notes)
     enclosing = enclosing_caster(light, closed)
     while enclosing is not None and holds_the_rest(enclosing, closed, snapshot):
         plan.notes.append(

@@ -77,6 +77,27 @@ class LightPose:
         """Return a hashable value that changes whenever the pose changes."""
         return (self.kind, *self.position.tolist(), *self.direction.tolist(), self.cone_angle)
 
+    def homogeneous(self) -> np.ndarray:
+        """Return the light as a homogeneous world 4-vector, in the one sign convention used.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(position, 1)`` for point and spot lights, ``(direction
+            towards the light, 0)`` for directional ones.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from pvshadows.scene.lights import LightKind, LightPose
+        >>> sun = LightPose(LightKind.DIRECTIONAL, np.zeros(3), np.array([0, 0, -1.0]), 180.0)
+        >>> sun.homogeneous().tolist()
+        [-0.0, -0.0, 1.0, 0.0]
+        """
+        if self.kind is LightKind.DIRECTIONAL:
+            return np.append(-self.direction, 0.0)
+        return np.append(self.position, 1.0)
+
 
 def light_pose(light: vtk.vtkLight) -> LightPose:
     """Read a light's world pose.

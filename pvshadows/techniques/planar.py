@@ -39,12 +39,12 @@ from pvshadows.gl.mask_target import MaskTexture
 from pvshadows.model.plan import Cast, PlanarCast
 from pvshadows.model.report import PassReport
 from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
-from pvshadows.scene.lights import LightKind
 from pvshadows.scene.planes import PlaneChoice, facing, flattening
 from pvshadows.scene.snapshot import ActorState
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
+from pvshadows.techniques.screen_mask import facing_shading, mask_shading, mask_uniforms
 
 _PASS = "planar mask"
 
@@ -56,25 +56,6 @@ class _LightState:
     frame: int = -1
     plane_actor: str | None = None
     active: bool = False
-
-
-def homogeneous_light(plan: Cast) -> np.ndarray:
-    """Return a planned light as a homogeneous world 4-vector.
-
-    Parameters
-    ----------
-    plan : Cast
-        The light's plan (its pose is read).
-
-    Returns
-    -------
-    numpy.ndarray
-        ``(position, 1)`` for point and spot lights, ``(direction towards
-        the light, 0)`` for directional ones.
-    """
-    if plan.pose.kind is LightKind.DIRECTIONAL:
-        return np.append(-plan.pose.direction, 0.0)
-    return np.append(plan.pose.position, 1.0)
 
 
 def may_cast(caster: ActorState, plane: np.ndarray, light: np.ndarray) -> bool:
@@ -281,7 +262,7 @@ class PlanarTechnique:
         self, plan: Cast, context: FrameContext, state: _LightState, choice: PlaneChoice
     ) -> list[PassReport]:
         assert choice.actor is not None and choice.plane is not None
-        light = homogeneous_light(plan)
+        light = plan.pose.homogeneous()
         plane = facing(choice.plane, light)
         name = choice.actor.name
         if not plane @ light > 0.0:
@@ -349,23 +330,12 @@ class PlanarTechnique:
             The mask lookup for the receiving plane (:attr:`LightShading.only_on`),
             with a facing test for every other receiver.
         """
-        i = plan.vtk_index
-        facing_only = LightShading(
-            i,
-            f"pvsFacingLight(pvsPlanarLightVC{i}, vertexVC.xyz, pvsNormalVC)",
-            sources=("shadow_planar.glsl",),
-        )
+        facing_only = facing_shading(plan.vtk_index)
         state = self._lights.get(vtk_id(plan.light))
         if state is None or state.plane_actor is None:
             return facing_only
-        return LightShading(
-            i,
-            f"pvsPlanarShadow(pvsPlanarMask{i}, pvsPlanarViewport{i}, pvsPlanarLightVC{i}, "
-            "vertexVC.xyz, pvsNormalVC)",
-            {f"pvsPlanarMask{i}": "sampler2D"},
-            sources=("shadow_planar.glsl",),
-            only_on=frozenset({state.plane_actor}),
-            elsewhere=facing_only,
+        return mask_shading(
+            plan.vtk_index, only_on=frozenset({state.plane_actor}), elsewhere=facing_only
         )
 
     def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
@@ -383,19 +353,11 @@ class PlanarTechnique:
         dict
             Uniform names and values for every receiver.
         """
-        i = plan.vtk_index
-        light_vc = context.view.light_in_view(homogeneous_light(plan))
-        uniforms: dict[str, object] = {f"pvsPlanarLightVC{i}": light_vc}
         state = self._lights.get(vtk_id(plan.light))
         if state is None or state.plane_actor is None:
-            return uniforms
-        state.mask.texture.Activate()
+            return mask_uniforms(plan, context, None)
         state.active = True
-        target = context.target()
-        (x0, y0), (width, height) = target.origin, target.size
-        uniforms[f"pvsPlanarMask{i}"] = state.mask.texture.GetTextureUnit()
-        uniforms[f"pvsPlanarViewport{i}"] = (float(x0), float(y0), float(width), float(height))
-        return uniforms
+        return mask_uniforms(plan, context, state.mask)
 
     def deactivate(self) -> None:
         """Free the texture units bound by :meth:`activate`."""

@@ -55,10 +55,10 @@ from pvshadows.scene.snapshot import ActorState
 from pvshadows.scene.triangles import ActorTriangles, vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
+from pvshadows.techniques.screen_mask import mask_shading, mask_uniforms
 from pvshadows.techniques.volume_fallback import Fallback, OpenCasterFallbacks, combine_shadings
 from pvshadows.techniques.volume_light import (
     finite_reach,
-    homogeneous_light,
 )
 from pvshadows.techniques.volume_meshes import (
     translucent_batches,
@@ -402,17 +402,10 @@ class VolumeTechnique:
             The mask lookup, times the fallback's lookup when open casters
             cast from a shadow map.
         """
-        i = plan.vtk_index
-        own = LightShading(
-            i,
-            f"pvsVolumeShadow(pvsMask{i}, pvsMaskViewport{i}, pvsLightVC{i}, vertexVC.xyz, "
-            "pvsNormalVC)",
-            {f"pvsMask{i}": "sampler2D"},
-            sources=("shadow_volume.glsl",),
-        )
+        own = mask_shading(plan.vtk_index)
         state = self._lights.get(vtk_id(plan.light))
         if state is None:
-            return LightShading(i, "1.0")  # nothing counted this frame (no pixels)
+            return LightShading(plan.vtk_index, "1.0")  # nothing counted this frame (no pixels)
         if state.fallback is None:
             return own
         name, subplan = state.fallback
@@ -436,16 +429,7 @@ class VolumeTechnique:
         state = self._lights.get(vtk_id(plan.light))
         if state is None:
             return {}
-        state.mask.texture.Activate()
-        i = plan.vtk_index
-        target = context.target()
-        (x0, y0), (width, height) = target.origin, target.size
-        light_vc = context.view.light_in_view(homogeneous_light(plan))
-        uniforms: dict[str, object] = {
-            f"pvsMask{i}": state.mask.texture.GetTextureUnit(),
-            f"pvsMaskViewport{i}": (float(x0), float(y0), float(width), float(height)),
-            f"pvsLightVC{i}": light_vc,
-        }
+        uniforms = mask_uniforms(plan, context, state.mask)
         if state.fallback is not None:
             name, subplan = state.fallback
             uniforms.update(self._fallbacks.technique(name).activate(subplan, context))

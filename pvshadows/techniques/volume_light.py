@@ -11,18 +11,8 @@ from __future__ import annotations
 import numpy as np
 
 from pvshadows.geometry.volume_casters import VolumeMesh, winding_number
-from pvshadows.model.plan import Cast
-from pvshadows.scene.lights import LightKind
 from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.techniques.base import FrameContext
-
-
-def homogeneous_light(plan: Cast) -> np.ndarray:
-    """Return the light in world coordinates: (position, 1), or (direction towards it, 0)."""
-    if plan.kind is LightKind.DIRECTIONAL:
-        return np.array([*(-plan.pose.direction), 0.0])
-    return np.array([*plan.pose.position, 1.0])
-
 
 #: A light this close to a caster's face plane (fraction of the caster's size) lies in it.
 ON_SURFACE = 1e-6

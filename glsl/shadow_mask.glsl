@@ -1,33 +1,35 @@
-// Planar-shadow lookups, added to a receiver's fragment shader.
+// Screen-mask lookups, added to a receiver's fragment shader: shadow volumes
+// and planar shadows both leave a mask per light, the size of the viewport,
+// 1 where the light reaches the surface seen in the pixel and 0 where it is
+// shadowed (a stencil count, or a flattened caster on the receiving plane).
+// A receiver reads it at its own pixel and multiplies by a facing test: 0
+// where the visible side of the surface faces away from the light. Receivers
+// a planar light's mask does not cover (every one but the plane) get the
+// facing test alone.
 //
-// The receiving plane reads the light's mask at its own pixel: 0 where a
-// flattened caster covered it, 1 elsewhere, times a facing test. Every other
-// receiver of that light gets the facing test alone: planar shadows fall
-// on the plane only.
-//
-//   mask      the light's mask (R8), the size of the viewport
+//   mask      the light's mask (R8)
 //   viewport  x, y: the renderer's origin in the window, in pixels; z, w: its size
 //   lightVC   the light in view coordinates: (position, 1) for point and spot
 //             lights, (direction towards the light, 0) for directional lights
 //   posVC     the fragment's position in view coordinates
 //   normalVC  its geometric normal, facing the camera
 
-#ifndef PVS_SHADOW_PLANAR_GLSL
-#define PVS_SHADOW_PLANAR_GLSL
+#ifndef PVS_SHADOW_MASK_GLSL
+#define PVS_SHADOW_MASK_GLSL
 
 // Cosine of incidence below which a surface counts as facing away (as in
-// pvshadows.reference.MIN_INCIDENCE).
-const float PVS_PLANAR_MIN_INCIDENCE = 1e-4;
+// pvshadows.verify.reference.MIN_INCIDENCE).
+const float PVS_MASK_MIN_INCIDENCE = 1e-4;
 
 // 1 where the visible side of the surface faces the light, else 0.
 float pvsFacingLight(vec4 lightVC, vec3 posVC, vec3 normalVC)
 {
   vec3 toLight = lightVC.w != 0.0 ? lightVC.xyz - posVC : lightVC.xyz;
   float cosTheta = dot(normalize(normalVC), normalize(toLight));
-  return cosTheta > PVS_PLANAR_MIN_INCIDENCE ? 1.0 : 0.0;
+  return cosTheta > PVS_MASK_MIN_INCIDENCE ? 1.0 : 0.0;
 }
 
-float pvsPlanarShadow(sampler2D mask, vec4 viewport, vec4 lightVC, vec3 posVC, vec3 normalVC)
+float pvsMaskShadow(sampler2D mask, vec4 viewport, vec4 lightVC, vec3 posVC, vec3 normalVC)
 {
   if (pvsFacingLight(lightVC, posVC, normalVC) == 0.0)
   {

@@ -1,0 +1,115 @@
+"""How receivers read a screen mask: what shadow volumes and planar shadows share.
+
+Both techniques leave, per light, a mask the size of the viewport (1 where
+the light reaches the surface seen in the pixel, 0 where it is shadowed);
+a receiver reads it at its own pixel, times a facing test
+(``glsl/shadow_mask.glsl``). These functions give the shading and the
+uniforms of that lookup, so both techniques name them the same way.
+"""
+
+from __future__ import annotations
+
+from pvshadows.gl.mask_target import MaskTexture
+from pvshadows.model.plan import Cast
+from pvshadows.shaders.shading import LightShading
+from pvshadows.techniques.base import FrameContext
+
+#: The GLSL file of the lookup.
+MASK_SOURCE = "shadow_mask.glsl"
+
+
+def facing_shading(vtk_index: int) -> LightShading:
+    """Return the facing test alone: 0 where the visible side faces away from the light.
+
+    Parameters
+    ----------
+    vtk_index : int
+        The light's index among VTK's lights.
+
+    Returns
+    -------
+    LightShading
+        The call, reading ``pvsLightVC{i}``.
+
+    Examples
+    --------
+    >>> from pvshadows.techniques.screen_mask import facing_shading
+    >>> facing_shading(2).visibility
+    'pvsFacingLight(pvsLightVC2, vertexVC.xyz, pvsNormalVC)'
+    """
+    return LightShading(
+        vtk_index,
+        f"pvsFacingLight(pvsLightVC{vtk_index}, vertexVC.xyz, pvsNormalVC)",
+        sources=(MASK_SOURCE,),
+    )
+
+
+def mask_shading(
+    vtk_index: int,
+    only_on: frozenset[str] | None = None,
+    elsewhere: LightShading | None = None,
+) -> LightShading:
+    """Return the mask lookup of a light, times the facing test.
+
+    Parameters
+    ----------
+    vtk_index : int
+        The light's index among VTK's lights.
+    only_on, elsewhere : optional
+        As :class:`LightShading` takes them, for a mask that covers some
+        receivers only.
+
+    Returns
+    -------
+    LightShading
+        The call, reading ``pvsMask{i}``, ``pvsMaskViewport{i}`` and
+        ``pvsLightVC{i}``.
+
+    Examples
+    --------
+    >>> from pvshadows.techniques.screen_mask import mask_shading
+    >>> mask_shading(0).samplers
+    {'pvsMask0': 'sampler2D'}
+    """
+    i = vtk_index
+    return LightShading(
+        i,
+        f"pvsMaskShadow(pvsMask{i}, pvsMaskViewport{i}, pvsLightVC{i}, vertexVC.xyz, pvsNormalVC)",
+        {f"pvsMask{i}": "sampler2D"},
+        sources=(MASK_SOURCE,),
+        only_on=only_on,
+        elsewhere=elsewhere,
+    )
+
+
+def mask_uniforms(plan: Cast, context: FrameContext, mask: MaskTexture | None) -> dict[str, object]:
+    """Bind a light's mask and return the uniforms of its lookup.
+
+    Parameters
+    ----------
+    plan : Cast
+        The light's cast.
+    context : FrameContext
+        This frame's camera and render target.
+    mask : MaskTexture or None
+        The mask, bound to a texture unit here; ``None`` for the facing test
+        alone.
+
+    Returns
+    -------
+    dict
+        ``pvsLightVC{i}``, and with a mask ``pvsMask{i}`` and
+        ``pvsMaskViewport{i}``.
+    """
+    i = plan.vtk_index
+    uniforms: dict[str, object] = {
+        f"pvsLightVC{i}": context.view.light_in_view(plan.pose.homogeneous())
+    }
+    if mask is None:
+        return uniforms
+    mask.texture.Activate()
+    target = context.target()
+    (x0, y0), (width, height) = target.origin, target.size
+    uniforms[f"pvsMask{i}"] = mask.texture.GetTextureUnit()
+    uniforms[f"pvsMaskViewport{i}"] = (float(x0), float(y0), float(width), float(height))
+    return uniforms
