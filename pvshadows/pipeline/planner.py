@@ -36,7 +36,14 @@ from pvshadows.pipeline.reach import ReachCache
 from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
 from pvshadows.scene.culling import boxes_in_frustum
 from pvshadows.scene.light_kit import unshadowed_reason
-from pvshadows.scene.lights import LightKind, LightPose, casts_light, light_kind, light_pose
+from pvshadows.scene.lights import (
+    LightKind,
+    LightPose,
+    casts_light,
+    light_kind,
+    light_pose,
+    pose_time,
+)
 from pvshadows.scene.planes import PlaneChoice, choose_plane, sole_plane
 from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.scene.triangles import vtk_id
@@ -111,7 +118,7 @@ class PlanMemo:
     def recall(self, inputs: tuple) -> LightPlan | None:
         """Return a light's last plan if it was made from the same ``inputs``, else ``None``.
 
-        ``inputs`` are ``(light, modification time, settings, index,
+        ``inputs`` are ``(light, pose time, settings, index,
         VTK index, snapshot, receivers seen)``. The plan comes back with the
         planner's notes only: what techniques and the frame added to them
         last frame is said again this frame.
@@ -205,7 +212,7 @@ def plan_frame(
     planned = 0
     for index, light in enumerate(lights):
         inputs = (
-            light, light.GetMTime(), settings_for(light), index, vtk_index, snapshot, seen_key
+            light, pose_time(light), settings_for(light), index, vtk_index, snapshot, seen_key
         )  # fmt: skip
         plan = memo.recall(inputs) if memo is not None else None
         if plan is None:

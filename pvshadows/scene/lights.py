@@ -99,6 +99,39 @@ class LightPose:
         return np.append(self.position, 1.0)
 
 
+def pose_time(light: vtk.vtkLight) -> int:
+    """Return a modification time that moves whenever the light's pose or state may have changed.
+
+    A camera light or headlight follows the camera through its transform
+    matrix, which the renderer edits in place: the light's own time does not
+    move then, the matrix's does.
+
+    Parameters
+    ----------
+    light : vtk.vtkLight
+        The light.
+
+    Returns
+    -------
+    int
+        The later of the light's and its transform matrix's modification times.
+
+    Examples
+    --------
+    >>> import vtk
+    >>> from pvshadows.scene.lights import pose_time
+    >>> light = vtk.vtkLight()
+    >>> light.SetTransformMatrix(vtk.vtkMatrix4x4())
+    >>> before = pose_time(light)
+    >>> light.GetTransformMatrix().SetElement(0, 3, 1.0)
+    >>> pose_time(light) > before
+    True
+    """
+    matrix = light.GetTransformMatrix()
+    own = light.GetMTime()
+    return own if matrix is None else max(own, matrix.GetMTime())
+
+
 def light_pose(light: vtk.vtkLight) -> LightPose:
     """Read a light's world pose.
 
