@@ -131,8 +131,7 @@ def cube_face_projections(near: float, far: float) -> np.ndarray:
     >>> cube_face_projections(0.1, 10.0).shape
     (6, 4, 4)
     """
-    projection = perspective(90.0, 1.0, near, far)
-    return np.stack([projection @ cube_face_rotation(face) for face in range(6)])
+    return perspective(90.0, 1.0, near, far) @ _FACE_ROTATIONS
 
 
 def faces_touching_box(box: np.ndarray) -> int:
@@ -156,24 +155,32 @@ def faces_touching_box(box: np.ndarray) -> int:
     >>> faces_touching_box(np.array([[2.0, -0.5, -0.5], [3.0, 0.5, 0.5]]))  # only +X
     1
     """
-    mask = 0
-    for face, (forward, _) in enumerate(CUBE_FACE_AXES):
-        axis = int(np.argmax(np.abs(forward)))
-        sign = forward[axis]
-        inside = max(sign * box[0, axis], sign * box[1, axis]) >= 0.0
-        for other in range(3):
-            if other == axis:
-                continue
+    box = np.asarray(box, dtype=np.float64)
+    # in front of the face's plane through the light, and inside its four side planes
+    ahead = np.maximum(_FACE_FORWARD @ box[0], _FACE_FORWARD @ box[1]) >= 0.0
+    sides = np.maximum(_FACE_SIDES * box[0], _FACE_SIDES * box[1]).sum(axis=2) >= 0.0
+    inside = ahead & sides.all(axis=1)
+    return int((inside * _FACE_BITS).sum())
+
+
+def _face_sides(forward: tuple[float, float, float]) -> list[np.ndarray]:
+    """Return the normals of the four side planes of a face's 90-degree pyramid."""
+    axis = int(np.argmax(np.abs(forward)))
+    normals = []
+    for other in range(3):
+        if other != axis:
             for side in (-1.0, 1.0):
-                # plane: sign * p[axis] + side * p[other] >= 0
-                coeff = np.zeros(3)
-                coeff[axis], coeff[other] = sign, side
-                best = np.maximum(coeff * box[0], coeff * box[1]).sum()
-                if best < 0.0:
-                    inside = False
-        if inside:
-            mask |= 1 << face
-    return mask
+                normal = np.zeros(3)
+                normal[axis], normal[other] = forward[axis], side
+                normals.append(normal)
+    return normals
+
+
+#: Each face's rotation, its forward axis, its side planes' normals and its bit.
+_FACE_ROTATIONS = np.stack([cube_face_rotation(face) for face in range(6)])
+_FACE_FORWARD = np.array([forward for forward, _ in CUBE_FACE_AXES])
+_FACE_SIDES = np.array([_face_sides(forward) for forward, _ in CUBE_FACE_AXES])
+_FACE_BITS = 1 << np.arange(6)
 
 
 def translation(offset: np.ndarray) -> np.ndarray:
