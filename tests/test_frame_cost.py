@@ -99,6 +99,19 @@ def test_a_moved_actor_keeps_its_triangles_and_their_bounds():
     assert moved.bounds[:, 0] == pytest.approx(state.bounds[:, 0] + 0.5)
 
 
+def test_a_moved_flat_actor_keeps_its_model_plane():
+    """Whether an actor is flat is found once for its triangles, not again when it moves."""
+    pl, _ = crowd()
+    flat = next(s for s in pl.shadows._renderers[0].snapshot.actors if s.sheet is not None)
+    plane = flat.triangles.model_plane()
+    assert plane is not None
+    flat.actor.AddPosition(0.0, 0.0, 0.25)
+    draw(pl)
+    (moved,) = (s for s in pl.shadows._renderers[0].snapshot.actors if s.actor is flat.actor)
+    assert moved is not flat and moved.triangles.model_plane() is plane
+    assert moved.sheet.anchor[2] == pytest.approx(flat.sheet.anchor[2] + 0.25)
+
+
 def test_moving_the_light_tests_every_actor_once_and_runs_its_pass():
     pl, light = crowd()
     actors = len(pl.shadows._renderers[0].snapshot.actors)

@@ -95,24 +95,19 @@ class ActorState:
         """The plane the actor lies in when it is flat (a ground, a wall), else ``None``.
 
         Flat means every point within ``1e-6`` of the actor's size of the
-        plane of its first triangle. Computed once per state: a frame that
-        did not change the actor keeps it.
+        plane of its first triangle
+        (:meth:`pvshadows.scene.triangles.ActorTriangles.model_plane`, found
+        once per triangles); placed in the world once per state.
         """
-        points = self.triangles.points
-        if points.shape[0] < 3:
+        plane = self.triangles.model_plane()
+        if plane is None:
+            return None
+        point, normal, size = plane
+        if size == 0.0:
             return Sheet(np.zeros(3), np.zeros(3), 0.0)
-        tri = self.triangles.triangles[0]
-        normal = np.cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]])
-        size = float(np.ptp(points, axis=0).max())
-        length = float(np.linalg.norm(normal))
-        if not length > 0.0 or size == 0.0:
-            return None
-        normal /= length
-        if np.abs((points - points[tri[0]]) @ normal).max() > 1e-6 * size:
-            return None
         world_normal = np.linalg.inv(self.matrix[:3, :3]).T @ normal
         world_normal /= np.linalg.norm(world_normal)
-        anchor = (self.matrix @ np.append(points[tri[0]] + self.triangles.center, 1.0))[:3]
+        anchor = (self.matrix @ np.append(point + self.triangles.center, 1.0))[:3]
         return Sheet(anchor, world_normal, size)
 
 

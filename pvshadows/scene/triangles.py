@@ -41,6 +41,7 @@ class ActorTriangles:
     version: int = field(default=0)
     _closed_outward: bool | None = field(default=None, repr=False)
     _model_bounds: np.ndarray | None = field(default=None, repr=False)
+    _model_plane: tuple | None = field(default=None, repr=False)
 
     @property
     def n_triangles(self) -> int:
@@ -73,6 +74,42 @@ class ActorTriangles:
             bounds.setflags(write=False)
             self._model_bounds = bounds
         return self._model_bounds
+
+    def model_plane(self) -> tuple[np.ndarray, np.ndarray, float] | None:
+        """Return the model-space plane the triangles lie in, if flat (computed once).
+
+        Flat means every point within ``1e-6`` of the points' size of the
+        plane of the first triangle. An actor that moves keeps its
+        triangles, so its world plane costs a matrix, not a pass over its
+        points.
+
+        Returns
+        -------
+        tuple or None
+            ``(point, unit normal, size)`` in model coordinates (the point
+            relative to :attr:`center`); ``(zeros, zeros, 0)`` for fewer than
+            three points; ``None`` when not flat.
+        """
+        if self._model_plane is None:
+            self._model_plane = (_plane_of(self.points, self.triangles),)
+        return self._model_plane[0]
+
+
+def _plane_of(
+    points: np.ndarray, triangles: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, float] | None:
+    if points.shape[0] < 3:
+        return np.zeros(3), np.zeros(3), 0.0
+    tri = triangles[0]
+    normal = np.cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]])
+    size = float(np.ptp(points, axis=0).max())
+    length = float(np.linalg.norm(normal))
+    if not length > 0.0 or size == 0.0:
+        return None
+    normal /= length
+    if np.abs((points - points[tri[0]]) @ normal).max() > 1e-6 * size:
+        return None
+    return points[tri[0]], normal, size
 
 
 def vtk_id(obj: vtk.vtkObjectBase) -> str:
