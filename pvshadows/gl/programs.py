@@ -83,11 +83,12 @@ def with_defines(source: str, defines: Mapping[str, object] | None = None) -> st
     Examples
     --------
     >>> from pvshadows.gl.programs import glsl_source, with_defines
-    >>> stage = with_defines(glsl_source("distance_depth.frag"), {"TAPS": 4, "SIX_PASSES": True})
-    >>> print("\n".join(stage.splitlines()[:3]))
-    #version 150
-    #define TAPS 4
-    #define SIX_PASSES
+    >>> source = glsl_source("distance_depth.frag")
+    >>> stage = with_defines(source, {"TAPS": 4, "SIX_PASSES": True})
+    >>> stage.splitlines()[0] == source.splitlines()[0]  # the version line stays first
+    True
+    >>> [line.split()[1] for line in stage.splitlines()[1:3]]
+    ['TAPS', 'SIX_PASSES']
     """
     version, _, body = source.partition("\n")
     lines = [version]

@@ -159,7 +159,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         Parameters
         ----------
         plan : Cast
-            The light's plan (technique ``"cubemap"``).
+            The light's cast (technique ``"cubemap"``).
         context : FrameContext
             This frame's renderer, actors, buffers and timer.
 
@@ -269,7 +269,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         Parameters
         ----------
         plan : Cast
-            The light's plan.
+            The light's cast.
 
         Returns
         -------
@@ -297,7 +297,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         Parameters
         ----------
         plan : Cast
-            The light's plan.
+            The light's cast.
         context : FrameContext
             This frame's renderer and camera.
 

@@ -120,7 +120,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         Parameters
         ----------
         plan : Cast
-            The light's plan (technique ``"map"``).
+            The light's cast (technique ``"map"``).
         context : FrameContext
             This frame's renderer, camera, actors, buffers and timer.
 
@@ -313,7 +313,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         Parameters
         ----------
         plan : Cast
-            The light's plan.
+            The light's cast.
 
         Returns
         -------
@@ -337,7 +337,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         Parameters
         ----------
         plan : Cast
-            The light's plan.
+            The light's cast.
         context : FrameContext
             This frame's camera.
 

@@ -227,7 +227,7 @@ class PlanarTechnique:
         Parameters
         ----------
         plan : Cast
-            The light's plan (technique ``"planar"``).
+            The light's cast (technique ``"planar"``).
         context : FrameContext
             This frame's renderer, camera, actors, buffers and timer.
 
@@ -322,7 +322,7 @@ class PlanarTechnique:
         Parameters
         ----------
         plan : Cast
-            The light's plan.
+            The light's cast.
 
         Returns
         -------
@@ -344,7 +344,7 @@ class PlanarTechnique:
         Parameters
         ----------
         plan : Cast
-            The light's plan.
+            The light's cast.
         context : FrameContext
             This frame's renderer and camera.
 

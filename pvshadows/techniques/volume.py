@@ -118,7 +118,7 @@ class VolumeTechnique:
         Parameters
         ----------
         plan : Cast
-            The light's plan (technique ``"volume"``).
+            The light's cast (technique ``"volume"``).
         context : FrameContext
             This frame's renderer, camera, actors, buffers and timer.
 
@@ -394,7 +394,7 @@ class VolumeTechnique:
         Parameters
         ----------
         plan : Cast
-            The light's plan.
+            The light's cast.
 
         Returns
         -------
@@ -417,7 +417,7 @@ class VolumeTechnique:
         Parameters
         ----------
         plan : Cast
-            The light's plan.
+            The light's cast.
         context : FrameContext
             This frame's renderer and camera.
 
