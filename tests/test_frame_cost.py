@@ -180,3 +180,19 @@ def test_moving_one_of_two_lights_plans_and_draws_that_light_only():
     assert shadows.memo.planned - planned == 1
     assert shadows.plans[1] is kept  # the other light's plan, and so its map, are kept
     assert pl.shadows.last_frame.passes_run == 1
+
+
+def test_an_actor_given_new_data_is_watched_through_that_data():
+    """After its mapper's input is swapped, edits to the new input are noticed too."""
+    pl, _ = crowd()
+    state = pl.shadows._renderers[0].snapshot.casters[1]
+    mesh = pv.Sphere(radius=0.2, center=state.bounds.mean(axis=0))
+    state.actor.GetMapper().SetInputData(mesh)
+    draw(pl)
+    before = counters(pl)
+    mesh.translate((0.0, 0.0, 0.5), inplace=True)
+    draw(pl)
+    counted = change(before, counters(pl))
+    assert counted["compared"] == 1 and counted["reread"] == 1
+    (moved,) = (s for s in pl.shadows._renderers[0].snapshot.casters if s.actor is state.actor)
+    assert moved.bounds[1, 2] == pytest.approx(mesh.bounds[5])

@@ -69,7 +69,7 @@ class RendererShadows:
         self.reach = ReachCache()
         #: Open casters of volume lights already warned about (one warning each).
         self.warned_open: set[tuple] = set()
-        #: Last frame's plans, kept while only the camera moves (``memo.kept`` counts such frames).
+        #: Each light's last plan, kept while its inputs hold (``memo.planned`` counts replans).
         self.memo = PlanMemo()
         self._window: vtk.vtkOpenGLRenderWindow | None = None
         self._timer: PassTimer | None = None

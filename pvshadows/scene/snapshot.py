@@ -326,6 +326,7 @@ class SceneReader:
             return cache.snapshot
         # Only the actors whose times moved can have changed.
         moved = (np.array(times) != np.array(cache.times)).any(axis=0)
+        cache.times = times
         return self._read_changed(cache, camera, set(np.flatnonzero(moved).tolist()))
 
     def _read_changed(
@@ -349,10 +350,16 @@ class SceneReader:
                 changed.append(entry.key)
             entries[id(actor)] = entry
         ordered = list(entries.values())
-        cache.mappers = [_NO_MAPPER if e.mapper is None else e.mapper for e in ordered]
-        cache.datas = [_NO_DATA if e.data is None else e.data for e in ordered]
-        cache.times = _times(cache.actors, cache.mappers, cache.datas)
-        cache.followers = any(e.follower for e in ordered)
+        if suspects is None or cache.times is None:
+            cache.mappers = [_NO_MAPPER if e.mapper is None else e.mapper for e in ordered]
+            cache.datas = [_NO_DATA if e.data is None else e.data for e in ordered]
+            cache.times = _times(cache.actors, cache.mappers, cache.datas)
+            cache.followers = any(e.follower for e in ordered)
+        else:
+            # The lists line up with the actors already: only the suspects' places change.
+            for index in suspects:
+                entry = entries[id(cache.actors[index])]
+                self._place(cache, index, entry)
         cache.camera, cache.roles = camera, self.roles
         if not changed and entries.keys() == cache.entries.keys() and cache.snapshot:
             return cache.snapshot
@@ -366,6 +373,18 @@ class SceneReader:
         cache.entries = entries
         cache.snapshot = Snapshot(actors, bystanders, frozenset(changed))
         return cache.snapshot
+
+    @staticmethod
+    def _place(cache: _RendererCache, index: int, entry: _Entry) -> None:
+        """Put an actor's mapper, input and their times at its place in ``cache``'s lists."""
+        assert cache.times is not None
+        mapper = _NO_MAPPER if entry.mapper is None else entry.mapper
+        data = _NO_DATA if entry.data is None else entry.data
+        cache.mappers[index], cache.datas[index] = mapper, data
+        actor_times, mapper_times, data_times = cache.times
+        actor_times[index] = vtk.vtkActor.GetMTime(entry.actor)
+        mapper_times[index] = vtk.vtkObject.GetMTime(mapper)
+        data_times[index] = vtk.vtkDataObject.GetMTime(data)
 
     def _stamp(self, entry: _Entry, camera: int) -> tuple:
         """Return the modification times and roles that decide whether an actor is read again."""
