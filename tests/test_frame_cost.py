@@ -63,6 +63,34 @@ def test_a_camera_that_sees_the_same_receivers_keeps_the_plans():
     assert counted["uniforms"] == 0
 
 
+def test_receivers_coming_into_view_and_leaving_it_keep_the_plans():
+    pl, _ = crowd()
+    before = counters(pl)
+    for _ in range(4):
+        pl.camera.Azimuth(20)
+        pl.camera.Zoom(1.5)
+        draw(pl)
+    counted = change(before, counters(pl))
+    # The spheres in view change from frame to frame; the light still reaches some of
+    # them, so what it casts and from which casters does not change.
+    assert counted["planned"] == 0
+    assert counted["cone tests"] == 0
+    assert pl.shadows.last_frame.passes_run == 0
+
+
+def test_a_camera_that_turns_away_from_every_receiver_plans_again():
+    pl, _ = crowd()
+    before = counters(pl)
+    pl.camera_position = [(0.0, 0.0, 50.0), (0.0, 0.0, 100.0), (0.0, 1.0, 0.0)]
+    draw(pl)
+    assert change(before, counters(pl))["planned"] == 1
+    assert pl.shadows.last_frame.lights[0].technique is None
+    pl.camera_position = [(0.0, 0.0, 50.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
+    draw(pl)
+    assert change(before, counters(pl))["planned"] == 2
+    assert pl.shadows.last_frame.lights[0].technique == "map"
+
+
 def test_nothing_changed_costs_no_vtk_call():
     pl, _ = crowd()
     before = counters(pl)

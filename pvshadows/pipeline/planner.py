@@ -89,11 +89,15 @@ class PlanMemo:
     """Last frame's plan of each light and what it was made from, kept between frames.
 
     A light's plan depends on the actors (the snapshot), the light and its
-    settings, its place among the lights, and which receivers the camera
-    sees. A light whose inputs are last frame's keeps last frame's plan
-    (only what the camera alone decides, a volume light's z-pass or z-fail,
-    is chosen again): a frame in which only the camera moved plans nothing,
-    and one in which one light moved plans that light only.
+    settings, its place among the lights, and what the camera sees of what
+    the plan looked at: whether it sees some receiver in the light's reach
+    (and some receiver at all), or, for a far spot light whose map was
+    fitted to the view, exactly which receivers it sees. A light whose
+    inputs are last frame's keeps last frame's plan (only what the camera
+    alone decides, a volume light's z-pass or z-fail, is chosen again): a
+    frame in which only the camera moved plans nothing, even when receivers
+    come into view and leave it, and one in which one light moved plans
+    that light only.
 
     Attributes
     ----------
@@ -109,30 +113,45 @@ class PlanMemo:
         self.kept = 0
         self.made = 0
         self.planned = 0
-        self._plans: dict[int, tuple[tuple, LightPlan, int]] = {}
+        self._plans: dict[int, tuple[tuple, LightPlan, int, ViewUse, object]] = {}
+        self._in_view: tuple[Snapshot, FrameView, np.ndarray] | None = None
 
     def forget(self) -> None:
         """Plan every light again next frame."""
         self._plans = {}
+        self._in_view = None
 
-    def recall(self, inputs: tuple) -> LightPlan | None:
-        """Return a light's last plan if it was made from the same ``inputs``, else ``None``.
+    def in_view(self, snapshot: Snapshot, view: FrameView) -> np.ndarray:
+        """Return which of the snapshot's receivers the view sees (tested when either changed)."""
+        kept = self._in_view
+        if kept is None or kept[0] is not snapshot or kept[1] is not view:
+            kept = (snapshot, view, boxes_in_frustum(snapshot.receiver_bounds, view.planes))
+            self._in_view = kept
+        return kept[2]
 
-        ``inputs`` are ``(light, pose time, settings, index,
-        VTK index, snapshot, receivers seen)``. The plan comes back with the
-        planner's notes only: what techniques and the frame added to them
-        last frame is said again this frame.
+    def recall(self, inputs: tuple, in_view: np.ndarray) -> LightPlan | None:
+        """Return a light's last plan if it was made from the same inputs, else ``None``.
+
+        ``inputs`` are ``(light, pose time, settings, index, VTK index,
+        snapshot)``; ``in_view`` says which of the snapshot's receivers the
+        camera sees, compared as far as the plan looked at it. The plan
+        comes back with the planner's notes only: what techniques and the
+        frame added to them last frame is said again this frame.
         """
         kept = self._plans.get(id(inputs[0]))
-        if kept is None or not _same_inputs(kept[0], inputs):
+        if (
+            kept is None
+            or not _same_inputs(kept[0], inputs)
+            or _view_key(kept[3], in_view) != kept[4]
+        ):
             return None
         plan, planned = kept[1], kept[2]
         del plan.notes[planned:]
         return plan
 
-    def keep(self, inputs: tuple, plan: LightPlan) -> None:
-        """Keep a light's plan of this frame and what it was made from."""
-        self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes))
+    def keep(self, inputs: tuple, plan: LightPlan, use: ViewUse, in_view: np.ndarray) -> None:
+        """Keep a light's plan of this frame, what it was made from and what it saw."""
+        self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes), use, _view_key(use, in_view))
 
     def keep_only(self, plans: list[LightPlan]) -> None:
         """Forget the lights that are no longer the renderer's."""
@@ -142,7 +161,7 @@ class PlanMemo:
 
 
 def _same_inputs(a: tuple, b: tuple) -> bool:
-    light, time, settings, index, vtk_index, snapshot, seen = a
+    light, time, settings, index, vtk_index, snapshot = a
     return (
         light is b[0]
         and time == b[1]
@@ -150,8 +169,24 @@ def _same_inputs(a: tuple, b: tuple) -> bool:
         and index == b[3]
         and vtk_index == b[4]
         and snapshot is b[5]
-        and seen == b[6]
     )
+
+
+#: A plan that looked at exactly which receivers the camera sees.
+EVERY_RECEIVER = "every receiver"
+#: What a light's plan looked at of the view: nothing (``None``), whether the camera
+#: sees some receiver and some receiver in the light's reach (that reach, a mask over
+#: the snapshot's receivers), or which receivers it sees (:data:`EVERY_RECEIVER`).
+ViewUse = None | np.ndarray | str
+
+
+def _view_key(use: ViewUse, in_view: np.ndarray) -> object:
+    """Return what a plan that looked at ``use`` of the view would see of ``in_view``."""
+    if use is None:
+        return None
+    if isinstance(use, str):
+        return in_view.tobytes()
+    return bool(in_view.any()), bool(np.any(in_view & use))
 
 
 def plan_frame(
@@ -201,8 +236,10 @@ def plan_frame(
     collection.InitTraversal()
     lights = [collection.GetNextItem() for _ in range(collection.GetNumberOfItems())]
     view = FrameView.of(renderer) if view is None else view
-    in_view = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
-    seen_key = in_view.tobytes()
+    if memo is None:
+        in_view = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
+    else:
+        in_view = memo.in_view(snapshot, view)
     plans = []
     vtk_index = 0
     reach = ReachCache() if reach is None else reach
@@ -211,15 +248,13 @@ def plan_frame(
     shared = _Shared(snapshot, in_view)
     planned = 0
     for index, light in enumerate(lights):
-        inputs = (
-            light, pose_time(light), settings_for(light), index, vtk_index, snapshot, seen_key
-        )  # fmt: skip
-        plan = memo.recall(inputs) if memo is not None else None
+        inputs = (light, pose_time(light), settings_for(light), index, vtk_index, snapshot)
+        plan = memo.recall(inputs, in_view) if memo is not None else None
         if plan is None:
-            plan = _plan_light(renderer, shared, inputs, reach, warned, gpu)
+            plan, use = _plan_light(renderer, shared, inputs, reach, warned, gpu)
             planned += 1
             if memo is not None:
-                memo.keep(inputs, plan)
+                memo.keep(inputs, plan, use, in_view)
         elif isinstance(plan.cast, VolumeCast):
             choose_volume_zmode(plan.cast, plan.cast.volume, renderer)
         if light.GetSwitch():
@@ -241,13 +276,13 @@ class _Shared:
 
     def __init__(self, snapshot: Snapshot, in_view: np.ndarray) -> None:
         self.snapshot = snapshot
-        self._in_view = in_view
+        self.in_view = in_view
 
     @cached_property
     def seen(self) -> list[ActorState]:
         """The receivers the camera sees."""
         receivers = self.snapshot.receivers
-        return [r for r, shown in zip(receivers, self._in_view, strict=True) if shown]
+        return [r for r, shown in zip(receivers, self.in_view, strict=True) if shown]
 
     @cached_property
     def only_a_plane(self) -> bool:
@@ -267,52 +302,55 @@ def _plan_light(
     reach: ReachCache,
     warned: set[tuple],
     extrude_on_gpu: Callable[[], bool],
-) -> LightPlan:
-    """Plan one light (``inputs`` as :meth:`PlanMemo.recall` takes them)."""
-    light, _, settings, index, vtk_index, _, _ = inputs
+) -> tuple[LightPlan, ViewUse]:
+    """Plan one light (``inputs`` as :meth:`PlanMemo.recall` takes them).
+
+    Returns the plan and what it looked at of the view (:data:`ViewUse`).
+    """
+    light, _, settings, index, vtk_index, _ = inputs
     plan = LightPlan(light, index, vtk_index, light_kind(light), settings)
     snapshot = shared.snapshot
     if settings is None:
         plan.notes.append(unshadowed_reason(light, renderer))
-        return plan
+        return plan, None
     if not casts_light(light):
         plan.notes.append(
             "the light is off or has zero intensity: it casts nothing and costs nothing"
         )
-        return plan
+        return plan, None
     if settings.strength == 0.0:
         plan.notes.append("strength=0: its shadows would remove nothing, so none is drawn")
-        return plan
+        return plan, None
     if light.LightTypeIsHeadlight():
         plan.notes.append(
             "a headlight's shadows hide behind the objects that cast them: none drawn"
         )
-        return plan
+        return plan, None
     try:
         pose = light_pose(light)
     except ValueError as error:
         plan.notes.append(f"casts nothing: {error}")
-        return plan
+        return plan, None
     technique, why = _technique_for(plan.kind, settings, shared.only_a_plane)
-    key, seen, casters = vtk_id(light), shared.seen, snapshot.casters
-    reached = [r for r, hit in zip(seen, reach.reaches(key, pose, seen), strict=True) if hit]
-    if not reached:
+    key, casters = vtk_id(light), snapshot.casters
+    use: ViewUse = np.array(reach.reaches(key, pose, snapshot.receivers), dtype=bool)
+    if not np.any(shared.in_view & use):
         plan.notes.append(
             "no receiver the camera sees is in the light's reach: it casts nothing and "
             "costs nothing"
-            if seen
+            if shared.in_view.any()
             else "the camera sees no receiver: the light casts nothing and costs nothing"
         )
-        return plan
+        return plan, use
     within = [c for c, hit in zip(casters, reach.reaches(key, pose, casters), strict=True) if hit]
     if not within:
         plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
-        return plan
+        return plan, use
     plan.notes.append(why)
     if technique == "cubemap" and pose.kind is LightKind.POINT:
         technique, pose = _fit_far_point(pose, within, plan.notes)
-    elif technique == "map" and pose.kind is LightKind.SPOT:
-        pose = _fit_far_spot(pose, within, seen, plan.notes)
+    elif technique == "map" and pose.kind is LightKind.SPOT and _far(pose, within):
+        pose, use = _fit_far_spot(pose, within, shared.seen, plan.notes), EVERY_RECEIVER
     if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
         plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
     cast = Cast(
@@ -324,7 +362,7 @@ def _plan_light(
         cast = _planar_cast(cast, shared.plane)
         plan.notes.append(shared.plane.reason)
     plan.cast = cast
-    return plan
+    return plan, use
 
 
 def _volume_cast(cast: Cast, volume: VolumePlan) -> VolumeCast:
@@ -363,10 +401,16 @@ def _parallel(
     return LightPose(LightKind.DIRECTIONAL, pose.position, direction, 180.0)
 
 
+def _far(pose: LightPose, casters: list[ActorState]) -> bool:
+    """Whether the casters are so far from the light that its rays are nearly parallel there."""
+    radius, distance, _ = _casters_seen_from(pose, casters)
+    return distance > 0.0 and radius / distance < PARALLEL_BELOW
+
+
 def _fit_far_spot(
     pose: LightPose, casters: list[ActorState], seen: list[ActorState], notes: list[str]
 ) -> LightPose:
-    """Give a spot light far from its casters an orthographic map along its rays.
+    """Give a spot light far from its casters (:func:`_far`) an orthographic map along its rays.
 
     Its map is already fitted to the casters; only past :data:`PARALLEL_BELOW`
     does it change, for the float32 precision of depths at that distance,
@@ -374,8 +418,6 @@ def _fit_far_spot(
     orthographic lookup has no cone to leave the rest unlit).
     """
     radius, distance, direction = _casters_seen_from(pose, casters)
-    if not (distance > 0.0 and radius / distance < PARALLEL_BELOW):
-        return pose
     corners = np.array(
         [
             [r.bounds[i][0], r.bounds[j][1], r.bounds[k][2]]
