@@ -15,9 +15,21 @@ struct PvsLight
   mat4 pack;
   // light space to a spot map's clip space
   mat4 lightToClip;
+  // the light in view coordinates, for the facing test of screen masks:
+  // (position, 1) for point and spot lights, (direction towards the light, 0)
+  // for directional lights
+  vec4 lightVC;
+  // x: the light's shadow strength
+  vec4 shading;
 };
 
 layout(std140) uniform pvsFrame
 {
+  // the VTK index of the light whose visibility a probe frame shows; -1 in a
+  // normal frame
+  int pvsProbeLight;
+  // the renderer's viewport in the window, in pixels: x, y its origin, z, w its
+  // size (where screen masks are read)
+  vec4 pvsViewport;
   PvsLight pvsLights[PVS_FRAME_LIGHTS];
 };

@@ -19,7 +19,7 @@
 //   PVS_GROUP_SIZE           lights in the group (sizes the uniform arrays)
 //   PVS_GROUP_LOOKUP         name of the function defined here
 //   PVS_GROUP_RECEIVER       the kind's receiver function
-//   PVS_GROUP_INDEX          uniform int[]: each light's index in VTK's lights,
+//   PVS_GROUP_INDEX          const int[]: each light's index in VTK's lights,
 //                            its entry of pvsLights (frame_block.glsl), which holds
 //                            its view-to-light matrix, its pack (params, cone, bias,
 //                            filter) and a spot map's light-to-clip matrix

@@ -2,10 +2,13 @@
 
 Each light's view-to-light matrix changes whenever the camera moves, its
 parameters (far distance, texel size, cone, a sun's fit) whenever it or its
-casters move, and every receiver reads them. Held as per-receiver uniforms,
-such a frame would cost one call per receiver and light; held in one uniform
-buffer (``glsl/frame_block.glsl``: one ``PvsLight`` per VTK light index), it
-costs one upload per frame whatever the number of receivers.
+casters move, its strength when the user sets it, and every receiver reads
+them, as it reads the probe's light and the viewport. Held as per-receiver
+uniforms, such values would cost one call per receiver and light, and VTK
+would set each again at every draw; held in one uniform buffer
+(``glsl/frame_block.glsl``: a header, then one ``PvsLight`` per VTK light
+index), they cost one upload per frame whatever the number of receivers,
+and a receiver keeps only its samplers' texture units as its own uniforms.
 
 The block sits at binding point 0, where GL puts every program's blocks
 until told otherwise: so the very first frame of a receiver, drawn with a
@@ -35,22 +38,37 @@ class LightEntry(NamedTuple):
     Attributes
     ----------
     view_to_light : numpy.ndarray
-        ``(4, 4)``: view coordinates to the light's space.
+        ``(4, 4)``: view coordinates to the light's space (the identity for
+        a light that reads no map).
     pack : tuple
         The four columns of the pack: params, cone, bias and filter
         (radius in texels, taps, layer in a cube array, 0).
     light_to_clip : numpy.ndarray or None
         ``(4, 4)``: light space to a spot map's clip space; ``None`` for
         the identity.
+    light_vc : tuple
+        The light in view coordinates for a screen mask's facing test:
+        ``(position, 1)`` or ``(direction towards the light, 0)``.
+    strength : float
+        The light's shadow strength.
     """
 
     view_to_light: np.ndarray
     pack: tuple
     light_to_clip: np.ndarray | None
+    light_vc: tuple
+    strength: float
+
+
+#: Floats before the lights' entries: the probe's light (an int, padded to 16 bytes)
+#: and the viewport (a vec4).
+HEADER_FLOATS = 8
+#: Floats of one entry: three matrices and two vectors.
+ENTRY_FLOATS = 3 * 16 + 2 * 4
 
 
 class FrameBlock:
-    """One uniform buffer holding every shadowed light's ``PvsLight`` entry.
+    """One uniform buffer holding the frame's probe, viewport and every shadowed light's entry.
 
     Parameters
     ----------
@@ -60,7 +78,7 @@ class FrameBlock:
     Attributes
     ----------
     uploads : int
-        Times the matrices changed and were sent to the GPU.
+        Times the block changed and was sent to the GPU.
     """
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
@@ -70,8 +88,13 @@ class FrameBlock:
         self._data = b""
         self.uploads = 0
 
-    def update(self, entries: Mapping[int, LightEntry]) -> None:
-        """Send this frame's entries (by VTK light index) and bind the block.
+    def update(
+        self,
+        entries: Mapping[int, LightEntry],
+        probe: int = -1,
+        viewport: tuple[float, float, float, float] = (0.0, 0.0, 1.0, 1.0),
+    ) -> None:
+        """Send this frame's block and bind it.
 
         The buffer holds at least 8 entries, and twice the entries asked for
         whenever more are: never fewer than any receiver's block declares.
@@ -79,22 +102,49 @@ class FrameBlock:
         Parameters
         ----------
         entries : dict
-            Each light's entry by its index
+            Each light's entry by its VTK light index
             (:func:`pvshadows.shaders.library.take_light_entries`); the
             entries of other lights are zero.
+        probe : int, default: -1
+            The VTK index of the light a probe frame shows, or -1.
+        viewport : tuple of float, default: (0.0, 0.0, 1.0, 1.0)
+            The renderer's origin and size in the window, in pixels.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import pyvista as pv
+        >>> from pvshadows.gl.frame_block import FrameBlock, LightEntry
+        >>> pl = pv.Plotter(off_screen=True)
+        >>> pl.ren_win.Render()
+        >>> block = FrameBlock(pl.ren_win)
+        >>> entry = LightEntry(np.eye(4), ((0.0,) * 4,) * 4, None, (0, 0, 1, 1), 0.8)
+        >>> block.update({0: entry}, probe=-1, viewport=(0, 0, 300, 200))
+        >>> block.update({0: entry}, probe=-1, viewport=(0, 0, 300, 200))
+        >>> block.uploads
+        1
         """
         from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData
         from OpenGL.raw.GL.VERSION.GL_3_0 import glBindBufferBase
 
         gl = self._gl
         self._capacity = max(self._capacity, 2 * (max(entries, default=-1) + 1))
-        block = np.zeros((self._capacity, 3, 4, 4), dtype=np.float32)
+        header = np.zeros(HEADER_FLOATS, dtype=np.float32)
+        header[:1].view(np.int32)[0] = probe
+        header[4:] = viewport
+        block = np.zeros((self._capacity, ENTRY_FLOATS), dtype=np.float32)
         # GLSL reads matrices by columns: each stored matrix is the transpose
-        for index, (view_to_light, pack, light_to_clip) in entries.items():
-            block[index, 0] = view_to_light.T
-            block[index, 1] = pack
-            block[index, 2] = _EYE if light_to_clip is None else light_to_clip.T
-        data = block.tobytes()
+        for index, entry in entries.items():
+            row = block[index]
+            row[0:16] = entry.view_to_light.T.ravel()
+            row[16:32] = np.ravel(entry.pack)
+            if entry.light_to_clip is not None:
+                row[32:48] = entry.light_to_clip.T.ravel()
+            else:
+                row[32:48] = _EYE.ravel()
+            row[48:52] = entry.light_vc
+            row[52] = entry.strength
+        data = header.tobytes() + block.tobytes()
         if data != self._data:
             gl.glBindBuffer(gl.GL_UNIFORM_BUFFER, self._buffer)
             glBufferData(gl.GL_UNIFORM_BUFFER, len(data), data, gl.GL_DYNAMIC_DRAW)

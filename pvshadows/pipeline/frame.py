@@ -31,7 +31,7 @@ from pvshadows.scene.triangles import vtk_id
 from pvshadows.scene.view import FrameView
 from pvshadows.shaders.edits import ReceiverEdits
 from pvshadows.shaders.library import take_light_entries
-from pvshadows.shaders.shading import PROBE_UNIFORM, LightShading, strength_uniform
+from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.base import FrameContext, Technique
 from pvshadows.techniques.volume import VolumeTechnique
@@ -163,7 +163,8 @@ class RendererShadows:
         )
         self._context = context
         report = self._building
-        uniforms: dict[str, object] = {PROBE_UNIFORM: self.probe_index}
+        uniforms: dict[str, object] = {}
+        strengths: dict[int, float] = {}
         shadings = []
         light_space: list[LightShading] = []
         self._active = []
@@ -179,7 +180,7 @@ class RendererShadows:
             technique = self.technique(cast.technique)
             light_report.passes = technique.update(cast, context)
             shadings.append(technique.shading(cast))
-            uniforms[strength_uniform(cast.vtk_index)] = cast.settings.strength
+            strengths[cast.vtk_index] = cast.settings.strength
             if cast.technique in LIGHT_SPACE_TECHNIQUES:
                 light_space.append(shadings[-1])
             if technique not in self._active:
@@ -198,9 +199,21 @@ class RendererShadows:
         self._where = "receiver shader edits"
         assert self._block is not None  # made by _start_gl
         lookups = [lookup for shading in shadings for lookup in shading.needs]
-        self._block.update(take_light_entries(lookups, uniforms))
+        entries = take_light_entries(strengths, lookups, uniforms)
+        self._block.update(entries, self.probe_index, self._viewport(context, plans))
         self._apply_edits(snapshot, shadings, uniforms, light_space)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
+
+    @staticmethod
+    def _viewport(
+        context: FrameContext, plans: list[LightPlan]
+    ) -> tuple[float, float, float, float]:
+        """Return where the renderer draws in the window, when some light reads a screen mask."""
+        if all(p.technique in LIGHT_SPACE_TECHNIQUES for p in plans if p.technique is not None):
+            return (0.0, 0.0, 1.0, 1.0)
+        target = context.target()
+        (x0, y0), (width, height) = target.origin, target.size
+        return (float(x0), float(y0), float(width), float(height))
 
     def _note_impostors(self, plans: list[LightPlan], snapshot: Snapshot) -> None:
         """Say under each shadowed light what the actors without triangles do."""

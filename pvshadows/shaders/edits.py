@@ -2,14 +2,16 @@
 
 Each frame the receivers need the edits of the lights that shadow them and
 the uniforms those lights' techniques return (packed into the arrays of each
-group of lights, :func:`pvshadows.shaders.shading.receiver_uniforms`); bystanders
-need only the probe switch. Both are sent to VTK only where they changed:
+group of lights, :func:`pvshadows.shaders.shading.receiver_uniforms`): only
+their samplers' texture units, since everything else they read is in the
+frame's uniform block. Bystanders need only the edit that blacks them out
+in probe frames, and no uniform. Both are sent to VTK only where they changed:
 replacements and packed uniforms are worked out once per distinct set of
 lights an actor shows (its *signature*), not once per actor; replacements are
 rebuilt for an actor only when its state, its signature or the lights'
 shadings changed; and a uniform whose value did not change is not set again.
-So a frame where only the camera moved sets the camera-dependent uniforms and
-nothing else, and a frame where nothing changed makes no VTK call here at all.
+So a frame where only the camera or a light moved, or nothing changed, makes
+no VTK call here at all.
 
 A receiver whose shader variant refused the edits, or in whose compiled
 program some edits did not land, tells this object through its
@@ -25,7 +27,6 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.shaders.shading import (
-    PROBE_UNIFORM,
     LightShading,
     ShaderEdits,
     bystander_replacements,
@@ -76,16 +77,16 @@ class ReceiverEdits:
     --------
     >>> import pyvista as pv
     >>> from pvshadows.shaders.edits import ReceiverEdits
-    >>> from pvshadows.shaders.shading import PROBE_UNIFORM, LightShading
+    >>> from pvshadows.shaders.shading import LightShading
     >>> from pvshadows.scene.snapshot import SceneReader
     >>> pl = pv.Plotter(off_screen=True)
     >>> _ = pl.add_mesh(pv.Sphere())
     >>> snapshot = SceneReader(lambda actor: "an actor").read(pl.renderer)
     >>> edits = ReceiverEdits()
-    >>> edits.update(snapshot, [LightShading(0, "1.0")], {PROBE_UNIFORM: -1, "pvsLevel": 0.5})
-    >>> edits.update(snapshot, [LightShading(0, "1.0")], {PROBE_UNIFORM: -1, "pvsLevel": 0.5})
+    >>> edits.update(snapshot, [LightShading(0, "1.0")], {"pvsMask0": 3})
+    >>> edits.update(snapshot, [LightShading(0, "1.0")], {"pvsMask0": 3})
     >>> edits.uniform_calls
-    2
+    1
     """
 
     def __init__(self) -> None:
@@ -101,8 +102,6 @@ class ReceiverEdits:
         self._snapshot: Snapshot | None = None
         self._shadings: list[LightShading] = []
         self._lit_points: set[str] = set()
-        self._probe: object = None
-        self._standing: list[vtk.vtkUniforms] = []
         self._flagged: set[str] = set()
         #: Receivers whose programs cannot be watched yet (no OpenGL mapper before a first draw).
         self._unwatched: set[str] = set()
@@ -134,8 +133,8 @@ class ReceiverEdits:
         shadings : list of LightShading
             How receivers read each shadowed light.
         uniforms : dict
-            Every light's uniform values by name (including the probe switch,
-            which bystanders get too).
+            Every light's uniform values by name that receivers read
+            themselves: their samplers' texture units.
         light_space : list of LightShading, optional
             The shadings of lights whose lookups work at any fragment
             (shadow maps): points and lines without triangles read these.
@@ -168,7 +167,6 @@ class ReceiverEdits:
         touched = set()
         members: dict[tuple, list[vtk.vtkUniforms]] = {}
         kept: dict[tuple, list[vtk.vtkUniforms]] = {}
-        standing = []
         for state in snapshot.receivers:
             key = state.key()[0]
             touched.add(key)
@@ -191,25 +189,20 @@ class ReceiverEdits:
                 members.setdefault(self._signature_of[key], []).append(self._uniforms[key])
                 continue
             if not (key in self._states and self._states[key] is None) or key in flagged:
-                self._edits_of(actor, key).apply(self._bystander)
-                self._edits_of(actor, key).set_uniforms({PROBE_UNIFORM: uniforms[PROBE_UNIFORM]})
-                self._uniforms[key] = actor.GetShaderProperty().GetFragmentCustomUniforms()
-                self.uniform_calls += 1
-            elif uniforms[PROBE_UNIFORM] != self._probe:
-                uniform_setter(PROBE_UNIFORM, uniforms[PROBE_UNIFORM])(self._uniforms[key])
-                self.uniform_calls += 1
+                edits = self._edits_of(actor, key)
+                edits.apply(self._bystander)
+                edits.set_uniforms({})
+                self._uniforms.pop(key, None)
             self._states[key] = None
             self._signature_of.pop(key, None)
-            standing.append(self._uniforms[key])
         for key in set(self._edits) - touched:
             self._forget(key)
         self._sent.update(fresh)
         for signature in set(self._sent) - set(members):
             self._sent.pop(signature)
             self._lights_of.pop(signature, None)
-        self._members, self._standing = members, standing
+        self._members = members
         self._snapshot, self._shadings, self._lit_points = snapshot, list(shadings), lit_points
-        self._probe = uniforms[PROBE_UNIFORM]
 
     def _receive(
         self,
@@ -263,13 +256,6 @@ class ReceiverEdits:
         """Set only the uniform values that changed, once converted per signature."""
         for signature, targets in self._members.items():
             self._sent[signature] = self._send_to(signature, targets, uniforms)
-        probe = uniforms[PROBE_UNIFORM]
-        if probe != self._probe:
-            setter = uniform_setter(PROBE_UNIFORM, probe)
-            for target in self._standing:
-                setter(target)
-            self.uniform_calls += len(self._standing)
-            self._probe = probe
 
     def _send_to(
         self,
@@ -364,8 +350,8 @@ class ReceiverEdits:
                     f"{type(error).__name__}: {error}"
                 )
             self._edits.pop(key, None)
-        self._snapshot, self._shadings, self._lit_points, self._probe = None, [], set(), None
-        self._members, self._standing, self._sent, self._lights_of = {}, [], {}, {}
+        self._snapshot, self._shadings, self._lit_points = None, [], set()
+        self._members, self._sent, self._lights_of = {}, {}, {}
         self._replacements.clear()
         self._flagged.clear()
         return troubles

@@ -213,6 +213,12 @@ def _defines(names: Mapping[str, str]) -> tuple[str, str]:
 def _group_instance(group: str, lookups: list[MapLookup]) -> str:
     first = lookups[0]
     uniform = f"pvs{group}"
+    indices = ", ".join(str(lookup.vtk_index) for lookup in lookups)
+    count = len(lookups)
+    # Which lights a group holds is part of the receiver's source (each has its own
+    # visibility global), so their indices are constants, not uniforms VTK sets at
+    # every draw.
+    table = f"const int {uniform}Light[{count}] = int[{count}]({indices});\n"
     names = {
         f"PVS_GROUP_{first.kind.upper()}": "",
         f"PVS_GROUP_{first.filter.upper()}": "",
@@ -233,7 +239,7 @@ def _group_instance(group: str, lookups: list[MapLookup]) -> str:
     each = " ".join(f"EACH({j}, {lookup.visibility_name})" for j, lookup in enumerate(lookups))
     names["PVS_GROUP_ALL(EACH)"] = each
     defines, undefines = _defines(names)
-    return defines + glsl_source("shadow_group.glsl") + undefines
+    return table + defines + glsl_source("shadow_group.glsl") + undefines
 
 
 def _kind_instance(kind: str, groups: dict[str, list[MapLookup]]) -> str:
@@ -260,8 +266,35 @@ def _gather(lookups: Iterable[MapLookup]) -> str:
     return defines + glsl_source("lookup_maps.glsl") + undefines
 
 
+def frame_block_source(lights: int) -> str:
+    """Return the declaration of the frame's uniform block (``glsl/frame_block.glsl``).
+
+    Parameters
+    ----------
+    lights : int
+        How many of VTK's lights the shader reads: its highest light index + 1
+        (at least 1).
+
+    Returns
+    -------
+    str
+        GLSL declaring ``pvsProbeLight``, ``pvsViewport`` and ``pvsLights``.
+
+    Examples
+    --------
+    >>> from pvshadows.shaders.library import frame_block_source
+    >>> "#define PVS_FRAME_LIGHTS 3" in frame_block_source(3)
+    True
+    """
+    block, unblock = _defines({"PVS_FRAME_LIGHTS": str(max(lights, 1))})
+    return block + glsl_source("frame_block.glsl") + unblock
+
+
 def shadow_functions(lookups: Iterable[MapLookup]) -> str:
     """Return the GLSL of every lookup a receiver's lights need.
+
+    The code reads the frame's uniform block, which the receiver declares
+    before it (:func:`frame_block_source`).
 
     Parameters
     ----------
@@ -291,9 +324,7 @@ def shadow_functions(lookups: Iterable[MapLookup]) -> str:
     by_kind: dict[str, dict[str, list[MapLookup]]] = {}
     for group, members in groups.items():
         by_kind.setdefault(members[0].kind, {})[group] = members
-    lights = max(lookup.vtk_index for members in groups.values() for lookup in members) + 1
-    block, unblock = _defines({"PVS_FRAME_LIGHTS": str(lights)})
-    files = [block + glsl_source("frame_block.glsl") + unblock, glsl_source("shadow_common.glsl")]
+    files = [glsl_source("shadow_common.glsl")]
     for kind in by_kind:
         files.extend(glsl_source(name) for name in (*LOOPED.get(kind, ()), KINDS[kind]["file"]))
     code = list(dict.fromkeys(files))
@@ -372,6 +403,7 @@ BLOCK_UNIFORMS = (
     "pvsFilterRadius",
     "pvsLightToClip",
     "pvsLayer",
+    "pvsLightVC",
 )
 #: Prefixes of each light's own uniforms, which :func:`group_uniforms` packs.
 OWN_UNIFORMS = ("pvsDepth", "pvsTransmit", "pvsRaw", "pvsOffsets")
@@ -381,48 +413,52 @@ _NO_VECTOR = (0.0, 0.0, 0.0, 0.0)
 
 
 def take_light_entries(
-    lookups: Iterable[MapLookup], uniforms: dict[str, object]
+    strengths: Mapping[int, float], lookups: Iterable[MapLookup], uniforms: dict[str, object]
 ) -> dict[int, LightEntry]:
     """Remove the lights' block uniforms from ``uniforms``; return each light's block entry.
 
     Parameters
     ----------
+    strengths : Mapping
+        The shadow strength of each shadowed light, by VTK light index.
     lookups : iterable of MapLookup
-        The map lookups of this frame's lights.
+        The map lookups of this frame's lights (their taps go to the entry).
     uniforms : dict
         Every light's uniforms by name, as the techniques set them; the
-        names in :data:`BLOCK_UNIFORMS` of the looked-up lights are removed.
+        names in :data:`BLOCK_UNIFORMS` of the shadowed lights are removed.
 
     Returns
     -------
     dict
-        Each light's :class:`LightEntry`, by VTK light index.
+        Each shadowed light's :class:`LightEntry`, by VTK light index.
 
     Examples
     --------
     >>> import numpy as np
     >>> from pvshadows.shaders.library import MapLookup, take_light_entries
     >>> uniforms = {"pvsViewToLight1": np.eye(4), "pvsParams1": (2, 0, 0, 0), "pvsDepth1": 3}
-    >>> entries = take_light_entries([MapLookup("cube", "pcf", 1, 4)], uniforms)
-    >>> entries[1].pack[0], entries[1].pack[3], uniforms
-    ((2, 0, 0, 0), (0.0, 4, 0.0, 0.0), {'pvsDepth1': 3})
+    >>> entries = take_light_entries({1: 0.5}, [MapLookup("cube", "pcf", 1, 4)], uniforms)
+    >>> entries[1].pack[0], entries[1].pack[3], entries[1].strength, uniforms
+    ((2, 0, 0, 0), (0.0, 4, 0.0, 0.0), 0.5, {'pvsDepth1': 3})
     """
+    taps = {lookup.vtk_index: lookup.taps for lookup in lookups}
     entries = {}
-    for lookup in {lookup.vtk_index: lookup for lookup in lookups}.values():
-        i = lookup.vtk_index
+    for i, strength in strengths.items():
         taken = {name: uniforms.pop(f"{name}{i}", None) for name in BLOCK_UNIFORMS}
         radius, layer = taken["pvsFilterRadius"], taken["pvsLayer"]
         pack = (
             _NO_VECTOR if taken["pvsParams"] is None else taken["pvsParams"],
             _NO_VECTOR if taken["pvsCone"] is None else taken["pvsCone"],
             _NO_VECTOR if taken["pvsBias"] is None else taken["pvsBias"],
-            (radius or 0.0, lookup.taps, layer or 0.0, 0.0),
+            (radius or 0.0, taps.get(i, 0), layer or 0.0, 0.0),
         )
         view = taken["pvsViewToLight"]
         entries[i] = LightEntry(
             np.eye(4) if view is None else cast(np.ndarray, view),
             pack,
             cast("np.ndarray | None", taken["pvsLightToClip"]),
+            cast(tuple, _NO_VECTOR if taken["pvsLightVC"] is None else taken["pvsLightVC"]),
+            float(strength),
         )
     return entries
 
@@ -445,25 +481,21 @@ def group_uniforms(
     -------
     dict
         ``uniforms`` without those lights' own uniforms, with each group's
-        arrays: ``list`` of ``int`` for sampler units and for the lights'
-        indices into the frame's block (``pvs{group}Light``).
+        arrays: ``list`` of ``int`` for sampler units (and the number of
+        lights of a looped group, ``pvs{group}Count``).
 
     Examples
     --------
     >>> from pvshadows.shaders.library import MapLookup, group_uniforms
-    >>> own = {"pvsDepth2": 5, "pvsProbeLight": -1}
-    >>> packed = group_uniforms([MapLookup("sun", "hard", 2)], own)
-    >>> sorted(packed)
-    ['pvsProbeLight', 'pvsSunHardDepth', 'pvsSunHardLight']
-    >>> packed["pvsSunHardDepth"], packed["pvsSunHardLight"]
-    ([5], [2])
+    >>> own = {"pvsDepth2": 5, "pvsMask0": 3}
+    >>> group_uniforms([MapLookup("sun", "hard", 2)], own)
+    {'pvsMask0': 3, 'pvsSunHardDepth': [5]}
     """
     groups = _groups(lookups)
     taken = {f"{name}{m.vtk_index}" for ms in groups.values() for m in ms for name in OWN_UNIFORMS}
     packed: dict[str, object] = {k: v for k, v in uniforms.items() if k not in taken}
     for group, members in groups.items():
         name = f"pvs{group}"
-        packed[f"{name}Light"] = [m.vtk_index for m in members]
         units = {
             part: [int(cast(int, uniforms[f"pvs{part}{m.vtk_index}"])) for m in members]
             for part in members[0].samplers

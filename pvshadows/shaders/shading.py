@@ -3,12 +3,15 @@
 Only the lighting code of each receiver's fragment shader changes: for every
 shadowed light, the light's diffuse and specular terms (Phong) or its
 radiance (PBR) are multiplied by ``1 - strength * (1 - visibility)``: the
-light's visibility, softened by its shadow ``strength`` (a uniform, so
-changing it recompiles nothing). Ambient light and
+light's visibility, softened by its shadow ``strength`` (read from the
+frame's uniform block, so changing it recompiles nothing). Ambient light and
 unshadowed lights are untouched. The edits are ``vtkShaderProperty``
-replacements applied after VTK's own substitutions, and the values they read
-are the property's custom uniforms, which VTK uploads at every draw, so a
-receiver needs no observer on its mapper and works from its first frame.
+replacements applied after VTK's own substitutions. What they read is the
+frame's uniform block (``glsl/frame_block.glsl``: every light's matrices,
+parameters and strength, the probe's light, the viewport), uploaded once per
+frame, and the property's custom uniforms, only the texture units of the
+samplers, which VTK sets at every draw; so a receiver needs no observer on
+its mapper and works from its first frame.
 
 Samplers are declared by VTK as ``uniform int NAME;`` custom uniforms (the
 texture unit) and retyped here to the sampler type the lookup needs.
@@ -28,13 +31,11 @@ from pvshadows.shaders.landing import LandingCheck
 from pvshadows.shaders.library import (
     MapLookup,
     extensions,
+    frame_block_source,
     group_samplers,
     group_uniforms,
     shadow_functions,
 )
-
-#: Name of the custom uniform that switches a frame to showing one light's visibility.
-PROBE_UNIFORM = "pvsProbeLight"
 
 _MAIN = "void main()"
 _VIEW_POSITION = "vec4 vertexVC = vertexVCVSOutput;"
@@ -108,34 +109,8 @@ class LightShading:
         return self.elsewhere or LightShading(self.vtk_index, "1.0")
 
 
-def strength_uniform(vtk_index: int) -> str:
-    """Return the name of the custom uniform holding a light's shadow strength.
-
-    A receiver keeps ``1 - strength * (1 - visibility)`` of the light's
-    diffuse and specular terms; the probe (:meth:`ShaderEdits.set_probe`)
-    shows the visibility itself.
-
-    Parameters
-    ----------
-    vtk_index : int
-        The light's index among the renderer's switched-on lights.
-
-    Returns
-    -------
-    str
-        The uniform's name.
-
-    Examples
-    --------
-    >>> from pvshadows.shaders.shading import strength_uniform
-    >>> strength_uniform(2)
-    'pvsStrength2'
-    """
-    return f"pvsStrength{vtk_index}"
-
-
 def _probe_output(colour: str) -> str:
-    return f"if ({PROBE_UNIFORM} >= 0) {{ fragOutput0 = {colour}; }}\n  {_PROBE_ANCHOR}"
+    return f"if (pvsProbeLight >= 0) {{ fragOutput0 = {colour}; }}\n  {_PROBE_ANCHOR}"
 
 
 def _uses_pbr(actor: vtk.vtkActor) -> bool:
@@ -163,7 +138,7 @@ def _light_hooks(
     compute = (
         (f"pvsLookupMaps(vertexVC.xyz, {normal});\n  " if lookup_maps else "")
         + f"pvsVisibility{i} = {visibility};\n"
-        f"  pvsKept{i} = pvsKeptShare(pvsVisibility{i}, {i}, {strength_uniform(i)});\n"
+        f"  pvsKept{i} = pvsKeptShare(pvsVisibility{i}, {i}, pvsLights[{i}].shading.x);\n"
     )
     if pbr:
         return [
@@ -223,6 +198,7 @@ def receiver_replacements(
     functions = "".join(f"#define {name}\n" for name in defines)
     each = " ".join(f"EACH(pvsVisibility{i}, pvsKept{i})" for i in (x.vtk_index for x in lights))
     functions += f"#define PVS_LIGHTS(EACH) {each}\n".replace(" \n", "\n")
+    functions += frame_block_source(max((light.vtk_index for light in lights), default=0) + 1)
     functions += glsl_source("receiver_state.glsl") + glsl_source("receiver_normal.glsl")
     functions += shadow_functions(lookups)
     functions += "".join(glsl_source(source) for source in sources)
@@ -274,32 +250,31 @@ def receiver_uniforms(
     Examples
     --------
     >>> from pvshadows.shaders.shading import LightShading, receiver_uniforms
-    >>> receiver_uniforms([LightShading(0, "1.0")], {"pvsProbeLight": -1})
-    {'pvsProbeLight': -1}
+    >>> receiver_uniforms([LightShading(0, "1.0")], {"pvsMask1": 4})
+    {'pvsMask1': 4}
     """
     return group_uniforms([lookup for light in lights for lookup in light.needs], uniforms)
 
 
 def bystander_replacements() -> list[tuple[str, str]]:
-    """Return the edit for an actor that shows no shadow: black when probing.
+    """Return the edits for an actor that shows no shadow: black when probing.
 
     Returns
     -------
     list of tuple
-        One ``(original, replacement)`` pair; it changes nothing in a normal
-        frame.
+        ``(original, replacement)`` pairs: the frame's uniform block, whose
+        ``pvsProbeLight`` says when a frame probes, and the probe's output;
+        they change nothing in a normal frame.
 
     Examples
     --------
     >>> from pvshadows.shaders.shading import bystander_replacements
-    >>> len(bystander_replacements())
-    1
+    >>> [original for original, _ in bystander_replacements()]
+    ['void main()', '//VTK::Picking::Impl']
     """
     return [
-        (
-            _PROBE_ANCHOR,
-            _probe_output("vec4(0.0, 0.0, 0.0, 1.0)"),
-        )
+        (_MAIN, f"{frame_block_source(1)}\n{_MAIN}"),
+        (_PROBE_ANCHOR, _probe_output("vec4(0.0, 0.0, 0.0, 1.0)")),
     ]
 
 
@@ -469,19 +444,6 @@ class ShaderEdits:
         for name, value in values.items():
             set_uniform(uniforms, name, value)
         self._uniforms = set(values)
-
-    def set_probe(self, light_index: int) -> None:
-        """Switch the probe: ``-1`` for normal shading, else show that light's visibility.
-
-        Parameters
-        ----------
-        light_index : int
-            VTK index of the light to show, or ``-1``.
-        """
-        self.actor.GetShaderProperty().GetFragmentCustomUniforms().SetUniformi(
-            PROBE_UNIFORM, light_index
-        )
-        self._uniforms.add(PROBE_UNIFORM)
 
     def remove(self) -> None:
         """Take every pvshadows edit and uniform off the actor, and stop checking it."""

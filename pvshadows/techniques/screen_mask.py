@@ -29,17 +29,17 @@ def facing_shading(vtk_index: int) -> LightShading:
     Returns
     -------
     LightShading
-        The call, reading ``pvsLightVC{i}``.
+        The call, reading the light's ``lightVC`` in the frame's uniform block.
 
     Examples
     --------
     >>> from pvshadows.techniques.screen_mask import facing_shading
     >>> facing_shading(2).visibility
-    'pvsFacingLight(pvsLightVC2, vertexVC.xyz, pvsNormalVC)'
+    'pvsFacingLight(pvsLights[2].lightVC, vertexVC.xyz, pvsNormalVC)'
     """
     return LightShading(
         vtk_index,
-        f"pvsFacingLight(pvsLightVC{vtk_index}, vertexVC.xyz, pvsNormalVC)",
+        f"pvsFacingLight(pvsLights[{vtk_index}].lightVC, vertexVC.xyz, pvsNormalVC)",
         sources=(MASK_SOURCE,),
     )
 
@@ -62,8 +62,8 @@ def mask_shading(
     Returns
     -------
     LightShading
-        The call, reading ``pvsMask{i}``, ``pvsMaskViewport{i}`` and
-        ``pvsLightVC{i}``.
+        The call, reading the sampler ``pvsMask{i}`` and, in the frame's
+        uniform block, the viewport and the light's ``lightVC``.
 
     Examples
     --------
@@ -74,7 +74,8 @@ def mask_shading(
     i = vtk_index
     return LightShading(
         i,
-        f"pvsMaskShadow(pvsMask{i}, pvsMaskViewport{i}, pvsLightVC{i}, vertexVC.xyz, pvsNormalVC)",
+        f"pvsMaskShadow(pvsMask{i}, pvsViewport, pvsLights[{i}].lightVC, vertexVC.xyz, "
+        "pvsNormalVC)",
         {f"pvsMask{i}": "sampler2D"},
         sources=(MASK_SOURCE,),
         only_on=only_on,
@@ -98,8 +99,8 @@ def mask_uniforms(plan: Cast, context: FrameContext, mask: MaskTexture | None) -
     Returns
     -------
     dict
-        ``pvsLightVC{i}``, and with a mask ``pvsMask{i}`` and
-        ``pvsMaskViewport{i}``.
+        ``pvsLightVC{i}`` (for the light's entry of the frame's uniform
+        block), and with a mask its texture unit ``pvsMask{i}``.
     """
     i = plan.vtk_index
     uniforms: dict[str, object] = {
@@ -108,8 +109,5 @@ def mask_uniforms(plan: Cast, context: FrameContext, mask: MaskTexture | None) -
     if mask is None:
         return uniforms
     mask.texture.Activate()
-    target = context.target()
-    (x0, y0), (width, height) = target.origin, target.size
     uniforms[f"pvsMask{i}"] = mask.texture.GetTextureUnit()
-    uniforms[f"pvsMaskViewport{i}"] = (float(x0), float(y0), float(width), float(height))
     return uniforms
