@@ -730,7 +730,7 @@ def append_lines(lines: list[str], out: Path) -> str:
     return _append(out, lines)
 
 
-def append_overhead_table(out: Path, *, quick: bool = False) -> str:
+def append_overhead_table(out: Path, *, quick: bool = False, huge: bool = False) -> str:
     """Measure the CPU time shadows add per frame and append it to ``out/bench.md``.
 
     Writes ``overhead.csv`` and ``overhead.md`` too (see :mod:`pvshadows.tools.overhead`).
@@ -741,6 +741,8 @@ def append_overhead_table(out: Path, *, quick: bool = False) -> str:
         Folder holding ``bench.md``.
     quick : bool, default: False
         Only the standard scene with a point light, a few frames.
+    huge : bool, default: False
+        Add a 10-million-triangle caster (``pvshadows bench --huge``).
 
     Returns
     -------
@@ -750,7 +752,8 @@ def append_overhead_table(out: Path, *, quick: bool = False) -> str:
     from pvshadows.tools.overhead import overhead_scenes, run_overhead, write_overhead
 
     frames, budget_s = (5, 5.0) if quick else (20, 20.0)
-    rows = run_overhead(overhead_scenes(quick=quick), frames=frames, budget_s=budget_s)
+    scenes = overhead_scenes(quick=quick, huge=huge)
+    rows = run_overhead(scenes, frames=frames, budget_s=budget_s)
     table = write_overhead(rows, out)
     return _append(out, ["", "Overhead per frame:", "", table])
 

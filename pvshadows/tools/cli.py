@@ -84,7 +84,7 @@ def _bench(args: argparse.Namespace) -> int:
     bar.line(bench.append_silhouette_table(timings, out))
     bar.line(bench.append_planner_table(bench.planner_counts(), out))
     bar.step("planner")
-    bar.line(bench.append_overhead_table(out, quick=args.quick))
+    bar.line(bench.append_overhead_table(out, quick=args.quick, huge=args.huge))
     bar.step("overhead")
     bar.close()
     print(f"wrote {out / 'bench.csv'}, {out / 'bench.md'}, {out / 'frontier.png'} and {presets}")
@@ -140,6 +140,12 @@ def parser() -> argparse.ArgumentParser:
         action="store_true",
         help="5 cases (hard and PCF cube maps, volumes, a spot map, planar), no area-light "
         "reference, small silhouette sizes: checks the bench runs, in about a minute",
+    )
+    bench.add_argument(
+        "--huge",
+        action="store_true",
+        help="add a 10-million-triangle caster to the overhead table (about 3 GB of memory, "
+        "a few minutes more)",
     )
     bench.set_defaults(run=_bench)
     return main_parser

@@ -124,13 +124,15 @@ def overhead_scenes(*, quick: bool = False, huge: bool = False) -> list[Overhead
     list of OverheadScene
         The standard scene with each kind of light, then the series over
         casters (1, 50, 500), spot lights (1, 4, 16) and triangles of one
-        caster under a point light (10 k, 1 M).
+        caster under a point light (10 k, 1 M, and 10 M with ``huge``).
 
     Examples
     --------
     >>> from pvshadows.tools.overhead import overhead_scenes
     >>> [scene.label for scene in overhead_scenes()][:2]
     ['standard scene, point', 'standard scene, spot']
+    >>> overhead_scenes(huge=True)[-1].label
+    '10 000 000 triangles, point'
     """
     if quick:
         return [OverheadScene("standard", "point")]
