@@ -114,6 +114,59 @@ def test_moving_one_actor_rereads_and_tests_that_actor_only():
     assert pl.shadows._renderers[0].snapshot.changed == {moved.__this__}
 
 
+def test_a_new_camera_compares_no_actor():
+    """VTK's modification events say no actor changed: none of the 200 is even compared."""
+    pl, _ = crowd()
+    before = counters(pl)
+    pl.camera.Azimuth(5)
+    draw(pl)
+    assert change(before, counters(pl))["compared"] == 0
+
+
+@pytest.mark.parametrize("edit", ["points", "point array", "user matrix", "property"])
+def test_raw_vtk_edits_below_the_dataset_are_noticed(edit):
+    """Modifying what an actor's shadow depends on, without modifying the actor or its
+    dataset (as raw VTK code may), marks that actor and no other."""
+    pl, _ = crowd()
+    state = pl.shadows._renderers[0].snapshot.casters[1]
+    data = state.actor.GetMapper().GetInputDataObject(0, 0)
+    points = data.GetPoints()
+    before = counters(pl)
+    if edit == "points":
+        x, y, z = points.GetPoint(0)
+        points.SetPoint(0, x, y, z + 3.0)
+        points.Modified()
+    elif edit == "point array":
+        array = points.GetData()
+        x, y, z = array.GetTuple3(0)
+        array.SetTuple3(0, x, y, z + 3.0)
+        array.Modified()
+    elif edit == "user matrix":
+        matrix = state.actor.GetUserMatrix()
+        matrix.SetElement(2, 3, matrix.GetElement(2, 3) + 3.0)
+    else:
+        state.actor.GetProperty().SetOpacity(0.5)
+    draw(pl)
+    counted = change(before, counters(pl))
+    assert counted["compared"] == 1 and counted["reread"] == 1
+    (now,) = (s for s in pl.shadows._renderers[0].snapshot.casters if s.actor is state.actor)
+    if edit == "property":
+        assert now.transmittance == pytest.approx(0.5)
+    else:
+        assert now.bounds[1, 2] == pytest.approx(state.bounds[1, 2] + 3.0)
+
+
+def test_disabling_removes_every_observer_from_the_actors():
+    pl, _ = crowd()
+    state = pl.shadows._renderers[0].snapshot.casters[1]
+    data = state.actor.GetMapper().GetInputDataObject(0, 0)
+    watched = [state.actor, state.actor.GetProperty(), state.actor.GetMapper(), data]
+    watched += [data.GetPoints(), data.GetPoints().GetData(), data.GetPolys()]
+    assert all(item.HasObserver("ModifiedEvent") for item in watched)
+    pl.shadows.disable()
+    assert not any(item.HasObserver("ModifiedEvent") for item in watched)
+
+
 def test_a_moved_actor_keeps_its_triangles_and_their_bounds():
     """Only the eight corners of its model bounds move, not a pass over its points."""
     pl, _ = crowd()

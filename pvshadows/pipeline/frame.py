@@ -330,6 +330,7 @@ class RendererShadows:
         for tag in self._observers:
             self.renderer.RemoveObserver(tag)
         self._observers = []
+        self._reader.release(self.renderer)
         self._clear_edits()
         window = self._window
         if window is not None and window.GetInitialized():

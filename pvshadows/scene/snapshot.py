@@ -1,14 +1,15 @@
 """What a renderer holds in one frame: casters, receivers and their geometry.
 
-Each frame reads three VTK modification times per actor (the actor's, which
-covers its property and transform, its mapper's and the mapper's input's),
-in three calls over lists, and compares them with last frame's; only when
-they or the actors' roles (a version the role setters raise) differ is each
-actor's stamp compared. An actor whose stamp did not change keeps last frame's state
-(matrix, bounds, name, triangles) untouched. The renderer's actor list is
-walked again only when its props changed. Triangles are re-read only when the
-actor's data changed. When no actor changed, the frame gets last frame's
-:class:`Snapshot` itself, so what is derived from it can be kept too.
+VTK tells which actors changed: observers on each object an actor's shadow
+depends on (:mod:`pvshadows.scene.watch`) mark it a suspect when VTK modifies
+it, and a frame compares the stamps (modification times and roles) of the
+suspects alone, or of every actor when the actors' roles (a version the role
+setters raise) changed. An actor whose stamp did not change keeps last
+frame's state (matrix, bounds, name, triangles) untouched. The renderer's
+actor list is walked again only when its props changed. Triangles are re-read
+only when the actor's data changed. When no actor changed, the frame reads
+no actor at all and gets last frame's :class:`Snapshot` itself, so what is
+derived from it can be kept too.
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ from pvshadows.scene.triangles import (
     vtk_id,
     world_bounds,
 )
+from pvshadows.scene.watch import ModificationWatch, watched_objects
 
 
 @dataclass
@@ -199,7 +201,7 @@ class SceneReader:
         self.problems: dict[str, str] = {}
         #: How many actors were read again (stamp changed) since the reader was made.
         self.reread = 0
-        #: How many actors' stamps were compared (their times moved, or every actor's
+        #: How many actors' stamps were compared (VTK modified them, or every actor's
         #: when the actor list or the roles changed).
         self.compared = 0
 
@@ -316,18 +318,27 @@ class SceneReader:
             collection.InitTraversal()
             cache.actors = [collection.GetNextActor() for _ in range(collection.GetNumberOfItems())]
             cache.props = props
-            cache.times = None
-        times = _times(cache.actors, cache.mappers, cache.datas)
+            cache.snapshot = None
         same_roles = cache.roles == self.roles and (cache.camera == camera or not cache.followers)
-        if times is None or cache.times is None or not same_roles or cache.snapshot is None:
+        if not same_roles or cache.snapshot is None:
             return self._read_changed(cache, camera, None)
-        if times == cache.times:
+        suspects = cache.watch.take()
+        if not suspects:
             cache.camera = camera
             return cache.snapshot
-        # Only the actors whose times moved can have changed.
-        moved = (np.array(times) != np.array(cache.times)).any(axis=0)
-        cache.times = times
-        return self._read_changed(cache, camera, set(np.flatnonzero(moved).tolist()))
+        return self._read_changed(cache, camera, suspects)
+
+    def release(self, renderer: vtk.vtkRenderer) -> None:
+        """Stop watching a renderer's actors and forget what was read of them.
+
+        Parameters
+        ----------
+        renderer : vtk.vtkRenderer
+            The renderer.
+        """
+        cache = self._frames.pop(vtk_id(renderer), None)
+        if cache is not None:
+            cache.watch.clear()
 
     def _read_changed(
         self, cache: _RendererCache, camera: int, suspects: set[int] | None
@@ -336,6 +347,8 @@ class SceneReader:
         entries: dict[int, _Entry] = {}
         changed = []
         self.compared += len(cache.actors) if suspects is None else len(suspects)
+        if suspects is None:
+            cache.watch.clear()
         for index, actor in enumerate(cache.actors):
             entry = cache.entries.get(id(actor))
             if (
@@ -348,18 +361,14 @@ class SceneReader:
             ):
                 entry = self._entry(actor, camera)
                 changed.append(entry.key)
+                if suspects is not None:
+                    cache.watch.watch(index, watched_objects(actor, entry.mapper, entry.data))
+            if suspects is None:
+                cache.watch.watch(index, watched_objects(actor, entry.mapper, entry.data))
             entries[id(actor)] = entry
         ordered = list(entries.values())
-        if suspects is None or cache.times is None:
-            cache.mappers = [_NO_MAPPER if e.mapper is None else e.mapper for e in ordered]
-            cache.datas = [_NO_DATA if e.data is None else e.data for e in ordered]
-            cache.times = _times(cache.actors, cache.mappers, cache.datas)
+        if suspects is None:
             cache.followers = any(e.follower for e in ordered)
-        else:
-            # The lists line up with the actors already: only the suspects' places change.
-            for index in suspects:
-                entry = entries[id(cache.actors[index])]
-                self._place(cache, index, entry)
         cache.camera, cache.roles = camera, self.roles
         if not changed and entries.keys() == cache.entries.keys() and cache.snapshot:
             return cache.snapshot
@@ -374,25 +383,14 @@ class SceneReader:
         cache.snapshot = Snapshot(actors, bystanders, frozenset(changed))
         return cache.snapshot
 
-    @staticmethod
-    def _place(cache: _RendererCache, index: int, entry: _Entry) -> None:
-        """Put an actor's mapper, input and their times at its place in ``cache``'s lists."""
-        assert cache.times is not None
-        mapper = _NO_MAPPER if entry.mapper is None else entry.mapper
-        data = _NO_DATA if entry.data is None else entry.data
-        cache.mappers[index], cache.datas[index] = mapper, data
-        actor_times, mapper_times, data_times = cache.times
-        actor_times[index] = vtk.vtkActor.GetMTime(entry.actor)
-        mapper_times[index] = vtk.vtkObject.GetMTime(mapper)
-        data_times[index] = vtk.vtkDataObject.GetMTime(data)
-
     def _stamp(self, entry: _Entry, camera: int) -> tuple:
         """Return the modification times and roles that decide whether an actor is read again."""
         key = entry.key
         return (
             vtk.vtkActor.GetMTime(entry.actor),
             0 if entry.mapper is None else vtk.vtkObject.GetMTime(entry.mapper),
-            0 if entry.data is None else vtk.vtkDataObject.GetMTime(entry.data),
+            # The data's own time and its points', cells' and arrays' (a virtual call).
+            0 if entry.data is None else entry.data.GetMTime(),
             # A follower turns to face the camera: its matrix changes with the camera's.
             camera if entry.follower else 0,
             self.casting.get(key, True),
@@ -455,41 +453,18 @@ class _Entry:
 
 @dataclass
 class _RendererCache:
-    """The actors one renderer showed in its last frame.
+    """The actors one renderer showed in its last frame, and the watch on them.
 
-    ``mappers`` and ``datas`` line up with ``actors`` (a stand-in where an
-    actor has none), so that one frame reads every modification time in
-    three calls over lists; ``times`` holds what they read last.
+    The watch marks an actor by its place in ``actors``; the places change
+    only when the list is walked again, and then every actor is watched
+    afresh.
     """
 
     props: int = -1
     actors: list[vtk.vtkActor] = field(default_factory=list)
     entries: dict[int, _Entry] = field(default_factory=dict)
     snapshot: Snapshot | None = None
-    mappers: list[vtk.vtkObject] = field(default_factory=list)
-    datas: list[vtk.vtkDataObject] = field(default_factory=list)
-    times: tuple | None = None
+    watch: ModificationWatch = field(default_factory=ModificationWatch)
     camera: int = -1
     roles: int = -1
     followers: bool = False
-
-
-#: Stand-ins for an actor without a mapper or input: their times never change.
-_NO_MAPPER = vtk.vtkObject()
-_NO_DATA = vtk.vtkPolyData()
-
-
-def _times(
-    actors: list[vtk.vtkActor], mappers: list[vtk.vtkObject], datas: list[vtk.vtkDataObject]
-) -> tuple | None:
-    """Return the modification times of actors, their mappers and inputs, or ``None``.
-
-    ``None`` when the lists do not line up (the actor list was walked again).
-    """
-    if not (len(actors) == len(mappers) == len(datas)):
-        return None
-    return (
-        list(map(vtk.vtkActor.GetMTime, actors)),
-        list(map(vtk.vtkObject.GetMTime, mappers)),
-        list(map(vtk.vtkDataObject.GetMTime, datas)),
-    )
