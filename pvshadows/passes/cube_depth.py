@@ -8,7 +8,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import column_major, cube_face_projections, faces_touching_box
-from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.gl.buffers import TriangleBuffers, draw_casters
 from pvshadows.gl.cube_array import CubeSlot
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthCube
@@ -139,12 +139,7 @@ class CubeDepthPass:
                     program.SetUniformMatrix4x4v("faceProjection", 6, column_major(projections))
                     program.SetUniformi("faceMask", face_mask)
                     program.SetUniformi("layerBase", cube.layer_base)
-                    for caster in casters:
-                        program.SetUniformMatrix4x4v(
-                            "modelToLight", 1, column_major(caster.model_to_light)
-                        )
-                        cull(caster.cull)
-                        caster.buffers.draw_triangles(program)
+                    draw_casters(program, casters, cull)
             else:
                 for face in range(6):
                     drawn = [c for c in casters if c.face_mask & (1 << face)]
@@ -162,12 +157,7 @@ class CubeDepthPass:
                         program.SetUniformMatrix4x4v(
                             "faceProjection", 1, column_major(projections[face])
                         )
-                        for caster in drawn:
-                            program.SetUniformMatrix4x4v(
-                                "modelToLight", 1, column_major(caster.model_to_light)
-                            )
-                            cull(caster.cull)
-                            caster.buffers.draw_triangles(program)
+                        draw_casters(program, drawn, cull)
         return records
 
     def release(self) -> None:

@@ -8,7 +8,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import column_major
-from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.gl.buffers import TriangleBuffers, draw_casters
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthMap
 from pvshadows.gl.timing import PassTimer
@@ -100,11 +100,7 @@ class MapDepthPass:
             bind_program(self._window, program)
             program.SetUniformf("invFar", 1.0 / depth_range)
             program.SetUniformMatrix4x4v("lightToClip", 1, column_major(light_to_clip))
-            cull = FaceCulling(self._window)
-            for caster in casters:
-                program.SetUniformMatrix4x4v("modelToLight", 1, column_major(caster.model_to_light))
-                cull(caster.cull)
-                caster.buffers.draw_triangles(program)
+            draw_casters(program, casters, FaceCulling(self._window))
         return [report]
 
     def release(self) -> None:
