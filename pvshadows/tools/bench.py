@@ -751,7 +751,7 @@ def append_overhead_table(out: Path, *, quick: bool = False, huge: bool = False)
     """
     from pvshadows.tools.overhead import overhead_scenes, run_overhead, write_overhead
 
-    frames, budget_s = (5, 5.0) if quick else (20, 20.0)
+    frames, budget_s = (5, 5.0) if quick else (100, 20.0)
     scenes = overhead_scenes(quick=quick, huge=huge)
     rows = run_overhead(scenes, frames=frames, budget_s=budget_s)
     table = write_overhead(rows, out)

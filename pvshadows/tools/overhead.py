@@ -240,7 +240,7 @@ def _timed_frame(plotter) -> float:
 
 
 def measure_frames(
-    scene: OverheadScene, frames: int = 20, budget_s: float = 20.0
+    scene: OverheadScene, frames: int = 100, budget_s: float = 20.0
 ) -> tuple[dict[str, float], dict[str, float], int]:
     """Measure, in this process, the CPU ms of frames with and without shadows.
 
@@ -251,9 +251,11 @@ def measure_frames(
     ----------
     scene : OverheadScene
         Which scene.
-    frames : int, default: 20
+    frames : int, default: 100
         Frames per median (fewer when a frame is so slow that the scene
-        would take longer than ``budget_s``; never fewer than 3).
+        would take longer than ``budget_s``; never fewer than 3). A small
+        scene's frame costs a fraction of a millisecond, so only many
+        frames hold its median still against the machine's noise.
     budget_s : float, default: 20.0
         Rough CPU seconds one scene may take.
 
@@ -363,7 +365,7 @@ def _in_subprocess(spec: dict, noop: bool) -> dict:
 def run_overhead(
     scenes: Iterable[OverheadScene],
     *,
-    frames: int = 20,
+    frames: int = 100,
     budget_s: float = 20.0,
     first_frame: bool = True,
     progress: Callable[[str], None] = print,
@@ -374,7 +376,7 @@ def run_overhead(
     ----------
     scenes : iterable of OverheadScene
         What to measure (see :func:`overhead_scenes`).
-    frames : int, default: 20
+    frames : int, default: 100
         Frames per median.
     budget_s : float, default: 20.0
         Rough CPU seconds per scene for the per-frame medians.
