@@ -5,6 +5,7 @@ import pytest
 import pyvista as pv
 
 from conftest import draw, point_light
+from pvshadows.pipeline.cube_passes import SIX_PASSES_FROM
 from pvshadows.tools.scenes import (
     crowd_scene,
     eight_spots_scene,
@@ -183,3 +184,25 @@ def test_the_planner_chooses_the_receiving_plane_of_planar_lights():
     assert planned() == "receiving plane: actor 'ground' (found on its own)"
     pl.shadows.set_receiver(pl.actors["ground"], plane=True)
     assert planned().endswith("(named with set_receiver(plane=True))")
+
+
+def test_auto_passes_fill_a_cube_of_many_triangles_face_by_face():
+    pl = pv.Plotter(off_screen=True, window_size=(200, 150), lighting="none")
+    pl.add_mesh(pv.Plane(i_size=8, j_size=8), color="white")
+    big = pv.Sphere(radius=1.0, center=(0, 0, 1.5), theta_resolution=260, phi_resolution=260)
+    assert big.n_cells >= SIX_PASSES_FROM
+    pl.add_mesh(big)
+    light = pv.Light(position=(0.5, 0.0, 6.0), positional=True, cone_angle=180)
+    pl.add_light(light)
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    (report,) = pl.shadows.last_frame.lights
+    assert report.technique == "cubemap"
+    assert all(p.name.startswith("cube face") for p in report.passes)
+    assert any("filled one face at a time" in note for note in report.notes)
+    # The same scene with a small sphere keeps the one layered draw.
+    big.copy_from(pv.Sphere(radius=1.0, center=(0, 0, 1.5)))
+    draw(pl)
+    (report,) = pl.shadows.last_frame.lights
+    assert [p.name for p in report.passes] == ["cube depth (six faces, one draw)"]
+    assert pl.shadows.measure(light).misclassified <= 0.05

@@ -17,8 +17,8 @@ from typing import Any
 TECHNIQUES = ("auto", "cubemap", "map", "volume", "planar")
 #: Filters of the map-based techniques.
 FILTERS = ("hard", "pcf", "random", "pcss")
-#: Ways to fill a depth cube.
-CUBE_PASSES = ("single", "six")
+#: Ways to fill a depth cube; "auto" lets the planner choose.
+CUBE_PASSES = ("auto", "single", "six")
 #: Allowed ``pcf_taps``: a square grid of hardware-filtered taps.
 PCF_TAPS = (4, 16, 36, 64)
 #: Smallest and largest ``samples`` of the random and PCSS filters (a multiple of 8).
@@ -84,8 +84,10 @@ class ShadowSettings:
         spot light's sphere in world units, or a directional light's angular
         radius in degrees (the sun: about 0.27).
     passes : str
-        ``"single"`` (one draw, geometry shader writes all six faces) or
-        ``"six"`` (one draw per face) for ``"cubemap"``.
+        ``"single"`` (one draw, geometry shader writes all six faces),
+        ``"six"`` (one draw per face) or ``"auto"`` (six once the casters
+        hold many triangles, see :data:`pvshadows.pipeline.cube_passes.SIX_PASSES_FROM`)
+        for ``"cubemap"``.
     bias : float
         Constant depth bias, in texels (scale-free).
     slope_bias : float
@@ -134,7 +136,7 @@ class ShadowSettings:
     samples: int = 32
     filter_radius: float = 2.0
     light_size: float = 0.0
-    passes: str = "single"
+    passes: str = "auto"
     bias: float = 0.2
     slope_bias: float = 0.1
     normal_offset: float = 0.0

@@ -119,6 +119,9 @@ class CubeDepthPass:
             One report per pass, run or skipped; GPU times arrive when the
             timer collects them after the frame.
         """
+        if passes not in ("single", "six"):
+            msg = f"the cube pass draws passes='single' or 'six', not {passes!r} (planned?)"
+            raise ValueError(msg)
         face_mask = 0
         for caster in casters:
             face_mask |= caster.face_mask

@@ -32,6 +32,7 @@ from pvshadows.model.plan import (
     VolumePlan,
 )
 from pvshadows.model.settings import ShadowSettings
+from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.reach import ReachCache
 from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
 from pvshadows.scene.culling import boxes_in_frustum
@@ -349,6 +350,8 @@ def _plan_light(
     plan.notes.append(why)
     if technique == "cubemap" and pose.kind is LightKind.POINT:
         technique, pose = _fit_far_point(pose, within, plan.notes)
+    if technique == "cubemap" and settings.passes == "auto":
+        settings = cube_passes(settings, within, plan.notes)
     elif technique == "map" and pose.kind is LightKind.SPOT and _far(pose, within):
         pose, use = _fit_far_spot(pose, within, shared.seen, plan.notes), EVERY_RECEIVER
     if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:

@@ -19,6 +19,7 @@ from dataclasses import replace
 
 from pvshadows import _vtk as vtk
 from pvshadows.model.plan import FALLBACK_TECHNIQUES, SERVES, Cast, VolumePlan
+from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.volume_zmode import choose_zmode
 from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.scene.triangles import vtk_id
@@ -155,4 +156,7 @@ def _fallback(
     if not usable:
         return None
     assert name is not None
-    return name, replace(plan, casters=open_casters, technique=name, notes=[])
+    settings = plan.settings
+    if name == "cubemap" and settings.passes == "auto":
+        settings = cube_passes(settings, open_casters, plan.notes)
+    return name, replace(plan, casters=open_casters, technique=name, settings=settings, notes=[])
