@@ -334,7 +334,7 @@ def _plan_light(
         return plan, None
     technique, why = _technique_for(plan.kind, settings, shared.only_a_plane)
     key, casters = vtk_id(light), snapshot.casters
-    use: ViewUse = np.array(reach.reaches(key, pose, snapshot.receivers), dtype=bool)
+    use: ViewUse = reach.reaches(key, pose, snapshot.receivers, snapshot.receiver_bounds)
     if not np.any(shared.in_view & use):
         plan.notes.append(
             "no receiver the camera sees is in the light's reach: it casts nothing and "
@@ -343,17 +343,19 @@ def _plan_light(
             else "the camera sees no receiver: the light casts nothing and costs nothing"
         )
         return plan, use
-    within = [c for c, hit in zip(casters, reach.reaches(key, pose, casters), strict=True) if hit]
+    hits = reach.reaches(key, pose, casters, snapshot.caster_bounds)
+    within = [c for c, hit in zip(casters, hits.tolist(), strict=True) if hit]
     if not within:
         plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
         return plan, use
     plan.notes.append(why)
+    bounds = snapshot.caster_bounds[hits]
     if technique == "cubemap" and pose.kind is LightKind.POINT:
-        technique, pose = _fit_far_point(pose, within, plan.notes)
+        technique, pose = _fit_far_point(pose, bounds, plan.notes)
+    elif technique == "map" and pose.kind is LightKind.SPOT and _far(pose, bounds):
+        pose, use = _fit_far_spot(pose, bounds, shared.seen, plan.notes), EVERY_RECEIVER
     if technique == "cubemap" and settings.passes == "auto":
         settings = cube_passes(settings, within, plan.notes)
-    elif technique == "map" and pose.kind is LightKind.SPOT and _far(pose, within):
-        pose, use = _fit_far_spot(pose, within, shared.seen, plan.notes), EVERY_RECEIVER
     if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
         plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
     cast = Cast(
@@ -380,12 +382,9 @@ def _fields_of(cast: Cast) -> dict[str, Any]:
     return {f.name: getattr(cast, f.name) for f in fields(Cast)}
 
 
-def _casters_seen_from(
-    pose: LightPose, casters: list[ActorState]
-) -> tuple[float, float, np.ndarray]:
-    """Return the casters' bounding radius, its distance and direction from the light."""
-    lo = np.min([c.bounds[0] for c in casters], axis=0)
-    hi = np.max([c.bounds[1] for c in casters], axis=0)
+def _casters_seen_from(pose: LightPose, bounds: np.ndarray) -> tuple[float, float, np.ndarray]:
+    """Return the bounding radius of casters' ``(n, 2, 3)`` bounds, its distance and direction."""
+    lo, hi = bounds[:, 0].min(axis=0), bounds[:, 1].max(axis=0)
     centre = (lo + hi) / 2.0
     distance = float(np.linalg.norm(centre - pose.position))
     radius = float(np.linalg.norm(hi - lo)) / 2.0
@@ -404,23 +403,24 @@ def _parallel(
     return LightPose(LightKind.DIRECTIONAL, pose.position, direction, 180.0)
 
 
-def _far(pose: LightPose, casters: list[ActorState]) -> bool:
-    """Whether the casters are so far from the light that its rays are nearly parallel there."""
-    radius, distance, _ = _casters_seen_from(pose, casters)
+def _far(pose: LightPose, bounds: np.ndarray) -> bool:
+    """Whether casters (their bounds) are so far that the light's rays are nearly parallel."""
+    radius, distance, _ = _casters_seen_from(pose, bounds)
     return distance > 0.0 and radius / distance < PARALLEL_BELOW
 
 
 def _fit_far_spot(
-    pose: LightPose, casters: list[ActorState], seen: list[ActorState], notes: list[str]
+    pose: LightPose, bounds: np.ndarray, seen: list[ActorState], notes: list[str]
 ) -> LightPose:
     """Give a spot light far from its casters (:func:`_far`) an orthographic map along its rays.
 
     Its map is already fitted to the casters; only past :data:`PARALLEL_BELOW`
     does it change, for the float32 precision of depths at that distance,
     and only when the cone holds every receiver the camera sees (an
-    orthographic lookup has no cone to leave the rest unlit).
+    orthographic lookup has no cone to leave the rest unlit). ``bounds`` are
+    the casters' ``(n, 2, 3)``.
     """
-    radius, distance, direction = _casters_seen_from(pose, casters)
+    radius, distance, direction = _casters_seen_from(pose, bounds)
     corners = np.array(
         [
             [r.bounds[i][0], r.bounds[j][1], r.bounds[k][2]]
@@ -437,17 +437,15 @@ def _fit_far_spot(
     return _parallel(pose, radius, distance, direction, notes)
 
 
-def _fit_far_point(
-    pose: LightPose, casters: list[ActorState], notes: list[str]
-) -> tuple[str, LightPose]:
+def _fit_far_point(pose: LightPose, bounds: np.ndarray, notes: list[str]) -> tuple[str, LightPose]:
     """Give a point light whose casters subtend a small angle a perspective map of their cone.
 
     Seen from far away, casters cover a few texels of one cube face and the
     texel-sized biases swallow their shadows; a map aimed at them spends
     every texel on them, at any distance. Receivers outside the cone stay
-    lit (nothing there can shadow them).
+    lit (nothing there can shadow them). ``bounds`` are the casters' ``(n, 2, 3)``.
     """
-    radius, distance, direction = _casters_seen_from(pose, casters)
+    radius, distance, direction = _casters_seen_from(pose, bounds)
     if distance <= radius / np.sin(np.radians(FIT_CONE_BELOW)):
         return "cubemap", pose
     half = float(np.degrees(np.arcsin(radius / distance)))

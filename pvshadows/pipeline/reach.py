@@ -33,10 +33,10 @@ class ReachCache:
     >>> actors = SceneReader(lambda actor: "an actor").read(pl.renderer).actors
     >>> spot = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 20.0)
     >>> cache = ReachCache()
-    >>> [cache.reaches("spot", spot, actors), cache.tests]
-    [[True, False], 2]
-    >>> [cache.reaches("spot", spot, actors), cache.tests]
-    [[True, False], 2]
+    >>> cache.reaches("spot", spot, actors).tolist(), cache.tests
+    ([True, False], 2)
+    >>> cache.reaches("spot", spot, actors).tolist(), cache.tests
+    ([True, False], 2)
     """
 
     def __init__(self) -> None:
@@ -45,7 +45,13 @@ class ReachCache:
         #: Cone tests run since the cache was made (one per actor tested).
         self.tests = 0
 
-    def reaches(self, light: str, pose: LightPose, states: list[ActorState]) -> list[bool]:
+    def reaches(
+        self,
+        light: str,
+        pose: LightPose,
+        states: list[ActorState],
+        bounds: np.ndarray | None = None,
+    ) -> np.ndarray:
         """Return, for each state, whether the light can reach it (conservative).
 
         Parameters
@@ -56,27 +62,35 @@ class ReachCache:
             Its pose this frame.
         states : list of ActorState
             The actors to answer for.
+        bounds : numpy.ndarray, optional
+            Their world bounds ``(n, 2, 3)`` already stacked (a snapshot
+            keeps them), so a moved light tests them in one call without
+            gathering them again.
 
         Returns
         -------
-        list of bool
-            One answer per state; always ``True`` for point and directional
+        numpy.ndarray
+            One bool per state; always ``True`` for point and directional
             lights.
         """
         if pose.kind is not LightKind.SPOT:
-            return [True] * len(states)
+            return np.ones(len(states), dtype=bool)
         pose_key = pose.key()
         kept_key, kept = self._lights.get(light, (None, {}))
         if kept_key != pose_key:
             kept = {}
-        untested = [s for s in states if id(s) not in kept or kept[id(s)][0] is not s]
+        untested = [i for i, s in enumerate(states) if id(s) not in kept or kept[id(s)][0] is not s]
         if untested:
             self.tests += len(untested)
-            inside = boxes_in_spot(np.array([s.bounds for s in untested]), pose)
-            kept = {**kept, **{id(s): (s, bool(i)) for s, i in zip(untested, inside, strict=True)}}
-        answers = [kept[id(s)][1] for s in states]
+            if bounds is None:
+                boxes = np.array([states[i].bounds for i in untested]).reshape(-1, 2, 3)
+            else:
+                boxes = bounds if len(untested) == len(states) else bounds[untested]
+            inside = boxes_in_spot(boxes, pose).tolist()
+            tested = zip(untested, inside, strict=True)
+            kept = {**kept, **{id(states[i]): (states[i], hit) for i, hit in tested}}
         self._lights[light] = (pose_key, kept)
-        return answers
+        return np.fromiter((kept[id(s)][1] for s in states), dtype=bool, count=len(states))
 
     def keep_only(self, lights: set[str], states: list[ActorState]) -> None:
         """Forget lights not in ``lights`` and actor states not in ``states``.

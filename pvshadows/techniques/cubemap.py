@@ -34,7 +34,7 @@ from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.filtering import lookup_shading
-from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
+from pvshadows.techniques.per_light import PerLightMaps, face_to_cull, models_to
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -204,14 +204,15 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             state.planned = plan
             reused = f"light and casters unchanged since frame {state.frame}: map still right"
             return [PassReport("cube depth", "reused", reused), *companion]
+        matrices = models_to(translation(-position), opaque)
         casters = [
             CubeCaster(
                 context.buffers.get(caster),
-                translation(-position) @ caster.model_matrix(),
+                matrix,
                 caster_face_mask(caster.bounds - position),
                 face_to_cull(caster, settings),
             )
-            for caster in opaque
+            for caster, matrix in zip(opaque, matrices, strict=True)
         ]
         assert self._pass is not None
         reports = self._pass.render(state.cube, casters, state.far, settings.passes, context.timer)

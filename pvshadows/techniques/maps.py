@@ -38,7 +38,7 @@ from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
 from pvshadows.techniques.filtering import lookup_shading
-from pvshadows.techniques.per_light import PerLightMaps, face_to_cull
+from pvshadows.techniques.per_light import PerLightMaps, face_to_cull, models_to
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -241,13 +241,11 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             reused = f"light, casters and coverage unchanged since frame {state.frame}"
             return [PassReport("map depth", "reused", reused), *companion]
         assert self._pass is not None and state.light_to_clip is not None
+        assert state.world_to_light is not None  # set with the fit, before any draw
+        matrices = models_to(state.world_to_light, opaque)
         drawn = [
-            MapCaster(
-                context.buffers.get(caster),
-                state.world_to_light @ caster.model_matrix(),
-                face_to_cull(caster, settings),
-            )
-            for caster in opaque
+            MapCaster(context.buffers.get(caster), matrix, face_to_cull(caster, settings))
+            for caster, matrix in zip(opaque, matrices, strict=True)
         ]
         reports = self._pass.render(
             state.depth,
