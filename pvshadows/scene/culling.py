@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from pvshadows import _vtk as vtk
@@ -157,6 +159,50 @@ def box_in_spot(box: np.ndarray, pose: LightPose) -> bool:
 _CORNERS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=bool)
 
 
+def box_corners(boxes: np.ndarray) -> np.ndarray:
+    """Return the eight corners of each box, in one call.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` min/max corners.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n, 8, 3)``: x from the min or max corner, then y, then z, the
+        min first in each.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.culling import box_corners
+    >>> box_corners(np.array([[[0, 0, 0], [1, 2, 3]]]))[0, [0, 1, 7]].tolist()
+    [[0, 0, 0], [0, 0, 3], [1, 2, 3]]
+    """
+    boxes = np.asarray(boxes)
+    return np.where(_CORNERS[None], boxes[:, 1, None, :], boxes[:, 0, None, :])
+
+
+@lru_cache(maxsize=256)
+def _cone_planes(direction: tuple[float, float, float], cone_angle: float) -> np.ndarray:
+    """Return the apex plane and the four sides of the pyramid around a cone, ``(5, 3)``.
+
+    Worked out once per direction and angle: a light tested again and again
+    (one moved actor per frame, say) does not pay for the cross products.
+    """
+    forward = np.array(direction)
+    right = np.cross(forward, [0.0, 0.0, 1.0] if abs(forward[2]) < 0.9 else [1.0, 0.0, 0.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    spread = np.tan(np.radians(min(cone_angle, 89.9)))
+    planes = np.array(
+        [forward] + [spread * forward + sign * axis for axis in (right, up) for sign in (-1, 1)]
+    )
+    planes.setflags(write=False)
+    return planes
+
+
 def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:
     """Test many world boxes against a spot light's cone at once, like :func:`box_in_spot`.
 
@@ -190,15 +236,7 @@ def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:
     lo, hi = boxes[:, 0] - pose.position, boxes[:, 1] - pose.position
     holds_light = np.all(lo <= 0.0, axis=1) & np.all(hi >= 0.0, axis=1)
     corners = np.where(_CORNERS[None], hi[:, None, :], lo[:, None, :])
-    forward = pose.direction
-    right = np.cross(forward, [0.0, 0.0, 1.0] if abs(forward[2]) < 0.9 else [1.0, 0.0, 0.0])
-    right /= np.linalg.norm(right)
-    up = np.cross(right, forward)
-    spread = np.tan(np.radians(min(pose.cone_angle, 89.9)))
-    # The apex plane and the four sides of the pyramid around the cone.
-    planes = np.array(
-        [forward] + [spread * forward + sign * axis for axis in (right, up) for sign in (-1, 1)]
-    )
+    planes = _cone_planes(tuple(pose.direction.tolist()), float(pose.cone_angle))
     behind_a_plane = np.any(np.all(corners @ planes.T < 0.0, axis=1), axis=1)
     center = 0.5 * (lo + hi)
     radius = 0.5 * np.linalg.norm(hi - lo, axis=1)

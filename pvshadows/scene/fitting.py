@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pvshadows.geometry.transforms import look_rotation, perspective, translation
+from pvshadows.scene.culling import box_corners
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import ActorState
 
@@ -90,18 +91,13 @@ def spot_fit(
     return SpotFit(rotation, projection, float(2.0 * half / resolution))
 
 
-def _box_corners(boxes: np.ndarray) -> np.ndarray:
-    return np.stack(
-        [boxes[:, [i, j, k], [0, 1, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)], axis=1
-    ).reshape(-1, 3)
-
-
 def _spot_half_width(pose: LightPose, rotation: np.ndarray, boxes: np.ndarray | None) -> float:
     """Tangent of the half angle the map must hold: the cone's, or less for casters in front."""
     cone = float(np.tan(np.radians(min(pose.cone_angle, 89.0))))
     if boxes is None or len(boxes) == 0:
         return cone
-    local = (_box_corners(np.asarray(boxes, dtype=np.float64)) - pose.position) @ rotation[:3, :3].T
+    corners = box_corners(np.asarray(boxes, dtype=np.float64)).reshape(-1, 3)
+    local = (corners - pose.position) @ rotation[:3, :3].T
     depth = -local[:, 2]
     if not np.all(depth > 0.0):
         return cone
@@ -232,10 +228,7 @@ class SunFit:
 
 
 def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    corners = np.stack(
-        [boxes[:, [i, j, k], [0, 1, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)], axis=1
-    )
-    rotated = corners @ rotation[:3, :3].T
+    rotated = box_corners(boxes) @ rotation[:3, :3].T
     return np.stack([rotated.min(axis=1), rotated.max(axis=1)], axis=1)
 
 
@@ -250,7 +243,7 @@ def _sheet_corners(casters: list[ActorState], receivers: list[ActorState]) -> np
     if all(state.sheet is None for state in casters):
         return np.zeros((0, 8, 3))
     boxes = np.array([r.bounds for r in receivers]).reshape(-1, 2, 3)
-    return _box_corners(boxes).reshape(-1, 8, 3)
+    return box_corners(boxes)
 
 
 def _flat_and_lit_above(
