@@ -232,9 +232,12 @@ def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     return np.stack([rotated.min(axis=1), rotated.max(axis=1)], axis=1)
 
 
+#: The corners of clip space's cube, homogeneous.
+_CLIP_CORNERS = np.array([[x, y, z, 1.0] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+
+
 def _view_corners(world_to_clip: np.ndarray) -> np.ndarray:
-    ndc = np.array([[x, y, z, 1.0] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
-    world = ndc @ np.linalg.inv(world_to_clip).T
+    world = _CLIP_CORNERS @ np.linalg.inv(world_to_clip).T
     return world[:, :3] / world[:, 3:4]
 
 

@@ -68,9 +68,11 @@ class MapState:
     fitted: SunFit | None = None
     casters_of: tuple | None = None
     companion: Companion | None = None
-    #: The spot plan the map was last brought up to date for: a plan kept by the planner
-    #: (nothing but the camera moved) finds the map still right.
+    #: The plan the map was last brought up to date for: a spot plan kept by the planner
+    #: (nothing but the camera moved) finds the map still right; a sun's, with the fit
+    #: it was drawn for (:attr:`planned_fit`) kept too.
     planned: Cast | None = None
+    planned_fit: SunFit | None = None
 
     def release(self) -> None:
         """Release the map and its companion."""
@@ -198,6 +200,15 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             return [PassReport("map depth", "skipped", "no caster can shadow a visible receiver")]
         if state.fit is not None and state.fit.covers(fit):
             fit = state.fit
+        if (
+            state.planned is plan
+            and state.planned_fit is fit
+            and state.key is not None
+            and state.companion is None
+        ):
+            reused = f"light, casters and coverage unchanged since frame {state.frame}"
+            return [PassReport("map depth", "reused", reused)]
+        state.planned = None
         state.fit = fit
         kept = state.casters_of
         if kept is None or kept[0] is not fit or kept[1] is not actors:
@@ -212,9 +223,11 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             f"fitted {2 * fit.half_width:.4g} wide to {len(drawn)} of "
             f"{len(plan.casters)} casters ({fit.texel:.3g} per texel)"
         )
-        return self._render(
+        reports = self._render(
             state, key, drawn, context, fit.depth, along_z=True, detail=detail, settings=settings
         )
+        state.planned, state.planned_fit = plan, fit
+        return reports
 
     def _render(
         self,
