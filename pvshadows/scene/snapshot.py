@@ -344,44 +344,69 @@ class SceneReader:
         self, cache: _RendererCache, camera: int, suspects: set[int] | None
     ) -> Snapshot:
         """Read again the actors that changed, among ``suspects`` (indices; ``None``: all)."""
-        entries: dict[int, _Entry] = {}
-        changed = []
-        self.compared += len(cache.actors) if suspects is None else len(suspects)
         if suspects is None:
-            cache.watch.clear()
-        for index, actor in enumerate(cache.actors):
-            entry = cache.entries.get(id(actor))
-            if (
-                entry is None
-                or entry.actor is not actor
-                or (
-                    (suspects is None or index in suspects)
-                    and entry.stamp != self._stamp(entry, camera)
-                )
-            ):
-                entry = self._entry(actor, camera)
-                changed.append(entry.key)
-                if suspects is not None:
-                    cache.watch.watch(index, watched_objects(actor, entry.mapper, entry.data))
-            if suspects is None:
-                cache.watch.watch(index, watched_objects(actor, entry.mapper, entry.data))
-            entries[id(actor)] = entry
-        ordered = list(entries.values())
-        if suspects is None:
-            cache.followers = any(e.follower for e in ordered)
+            entries, changed = self._compare_all(cache, camera)
+        else:
+            entries, changed = self._compare_suspects(cache, camera, suspects)
         cache.camera, cache.roles = camera, self.roles
         if not changed and entries.keys() == cache.entries.keys() and cache.snapshot:
             return cache.snapshot
         self.reread += len(changed)
-        kept = {e.key for e in ordered}
-        for gone in cache.entries.values():
-            if gone.key not in kept:
-                self._cache.pop(gone.key, None)
+        ordered = [entries[id(actor)] for actor in cache.actors]
+        if suspects is None:
+            kept = {e.key for e in ordered}
+            for gone in cache.entries.values():
+                if gone.key not in kept:
+                    self._cache.pop(gone.key, None)
         actors = [e.state for e in ordered if e.state is not None]
         bystanders = [e.actor for e in ordered if e.bystander]
         cache.entries = entries
         cache.snapshot = Snapshot(actors, bystanders, frozenset(changed))
         return cache.snapshot
+
+    def _compare_all(
+        self, cache: _RendererCache, camera: int
+    ) -> tuple[dict[int, _Entry], list[str]]:
+        """Compare every actor's stamp, keep the unchanged entries, watch every actor afresh."""
+        entries: dict[int, _Entry] = {}
+        changed = []
+        self.compared += len(cache.actors)
+        cache.watch.clear()
+        for index, actor in enumerate(cache.actors):
+            entry = cache.entries.get(id(actor))
+            if (
+                entry is None
+                or entry.actor is not actor
+                or entry.stamp != self._stamp(entry, camera)
+            ):
+                entry = self._entry(actor, camera)
+                changed.append(entry.key)
+            cache.watch.watch(index, watched_objects(actor, entry.mapper, entry.data))
+            entries[id(actor)] = entry
+        cache.followers = any(e.follower for e in entries.values())
+        return entries, changed
+
+    def _compare_suspects(
+        self, cache: _RendererCache, camera: int, suspects: set[int]
+    ) -> tuple[dict[int, _Entry], list[str]]:
+        """Compare the stamps of the actors VTK modified; read and watch again those that changed.
+
+        The actor list is last frame's, so every other entry stays as it is:
+        the work is in the suspects alone.
+        """
+        entries = dict(cache.entries)
+        changed = []
+        self.compared += len(suspects)
+        for index in sorted(suspects):
+            actor = cache.actors[index]
+            entry = entries[id(actor)]
+            if entry.stamp == self._stamp(entry, camera):
+                continue
+            entry = self._entry(actor, camera)
+            changed.append(entry.key)
+            cache.watch.watch(index, watched_objects(actor, entry.mapper, entry.data))
+            entries[id(actor)] = entry
+        return entries, changed
 
     def _stamp(self, entry: _Entry, camera: int) -> tuple:
         """Return the modification times and roles that decide whether an actor is read again."""
