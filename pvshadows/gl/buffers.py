@@ -86,18 +86,13 @@ class IndexedBuffers:
         first, count : int
             Range of the index buffer to draw.
         """
-        if count <= 0:
-            return
-        # The raw entry points: PyOpenGL's wrappers cost more than the draw call itself.
-        from OpenGL.raw.GL.VERSION.GL_1_1 import glDrawElements
         from OpenGL.raw.GL.VERSION.GL_3_0 import glBindVertexArray
 
-        glBindVertexArray(self._array_for(program.FindAttributeArray("position")))
-        glDrawElements(mode, count, _UNSIGNED_INT, ctypes.c_void_p(4 * first))
+        self.draw_in_array(program.FindAttributeArray("position"), mode, first, count)
         glBindVertexArray(0)
 
-    def draw_in_array(self, location: int, mode: int) -> None:
-        """Draw every index through this buffer's vertex array, left bound, for ``location``.
+    def draw_in_array(self, location: int, mode: int, first: int = 0, count: int = -1) -> None:
+        """Draw indices through this buffer's vertex array for ``location``, left bound.
 
         For loops over many buffers (:func:`draw_casters`): the caller
         unbinds the vertex array once after the last draw.
@@ -108,13 +103,18 @@ class IndexedBuffers:
             The attribute location of ``position`` in the bound program.
         mode : int
             GL primitive, e.g. ``GL_TRIANGLES``.
+        first, count : int, default: 0, -1
+            Range of the index buffer to draw (``-1``: to its end).
         """
+        count = self.n_indices - first if count < 0 else count
+        if count <= 0:
+            return
+        # The raw entry points: PyOpenGL's wrappers cost more than the draw call itself.
         from OpenGL.raw.GL.VERSION.GL_1_1 import glDrawElements
         from OpenGL.raw.GL.VERSION.GL_3_0 import glBindVertexArray
 
-        if self.n_indices > 0:
-            glBindVertexArray(self._array_for(location))
-            glDrawElements(mode, self.n_indices, _UNSIGNED_INT, None)
+        glBindVertexArray(self._array_for(location))
+        glDrawElements(mode, count, _UNSIGNED_INT, ctypes.c_void_p(4 * first))
 
     def release(self) -> None:
         """Delete the buffers and vertex arrays (the context must be current)."""
