@@ -35,7 +35,7 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.reach import ReachCache
 from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
-from pvshadows.scene.culling import boxes_in_frustum
+from pvshadows.scene.culling import box_corners, boxes_in_frustum
 from pvshadows.scene.light_kit import unshadowed_reason
 from pvshadows.scene.lights import (
     LightKind,
@@ -352,8 +352,10 @@ def _plan_light(
     bounds = snapshot.caster_bounds[hits]
     if technique == "cubemap" and pose.kind is LightKind.POINT:
         technique, pose = _fit_far_point(pose, bounds, plan.notes)
-    elif technique == "map" and pose.kind is LightKind.SPOT and _far(pose, bounds):
-        pose, use = _fit_far_spot(pose, bounds, shared.seen, plan.notes), EVERY_RECEIVER
+    elif technique == "map" and pose.kind is LightKind.SPOT:
+        seen_from = _casters_seen_from(pose, bounds)
+        if _far(seen_from):
+            pose, use = _fit_far_spot(pose, seen_from, shared.seen, plan.notes), EVERY_RECEIVER
     if technique == "cubemap" and settings.passes == "auto":
         settings = cube_passes(settings, within, plan.notes)
     if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
@@ -403,33 +405,28 @@ def _parallel(
     return LightPose(LightKind.DIRECTIONAL, pose.position, direction, 180.0)
 
 
-def _far(pose: LightPose, bounds: np.ndarray) -> bool:
-    """Whether casters (their bounds) are so far that the light's rays are nearly parallel."""
-    radius, distance, _ = _casters_seen_from(pose, bounds)
+def _far(seen_from: tuple[float, float, np.ndarray]) -> bool:
+    """Whether casters (:func:`_casters_seen_from`) are so far that the rays are nearly parallel."""
+    radius, distance, _ = seen_from
     return distance > 0.0 and radius / distance < PARALLEL_BELOW
 
 
 def _fit_far_spot(
-    pose: LightPose, bounds: np.ndarray, seen: list[ActorState], notes: list[str]
+    pose: LightPose,
+    seen_from: tuple[float, float, np.ndarray],
+    seen: list[ActorState],
+    notes: list[str],
 ) -> LightPose:
     """Give a spot light far from its casters (:func:`_far`) an orthographic map along its rays.
 
     Its map is already fitted to the casters; only past :data:`PARALLEL_BELOW`
     does it change, for the float32 precision of depths at that distance,
     and only when the cone holds every receiver the camera sees (an
-    orthographic lookup has no cone to leave the rest unlit). ``bounds`` are
-    the casters' ``(n, 2, 3)``.
+    orthographic lookup has no cone to leave the rest unlit). ``seen_from``
+    is what :func:`_casters_seen_from` says of the casters.
     """
-    radius, distance, direction = _casters_seen_from(pose, bounds)
-    corners = np.array(
-        [
-            [r.bounds[i][0], r.bounds[j][1], r.bounds[k][2]]
-            for r in seen
-            for i in (0, 1)
-            for j in (0, 1)
-            for k in (0, 1)
-        ]
-    )
+    radius, distance, direction = seen_from
+    corners = box_corners(np.array([r.bounds for r in seen]).reshape(-1, 2, 3)).reshape(-1, 3)
     rays = corners - pose.position
     cosines = rays @ pose.direction / np.linalg.norm(rays, axis=1)
     if np.any(cosines < np.cos(np.radians(pose.cone_angle))):
