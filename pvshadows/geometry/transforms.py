@@ -134,33 +134,34 @@ def cube_face_projections(near: float, far: float) -> np.ndarray:
     return perspective(90.0, 1.0, near, far) @ _FACE_ROTATIONS
 
 
-def faces_touching_box(box: np.ndarray) -> int:
-    """Return a bit mask of the cube faces whose frustum may hold a box.
+def faces_touching_boxes(boxes: np.ndarray) -> np.ndarray:
+    """Return bit masks of the cube faces whose frustum may hold each box.
 
     Parameters
     ----------
-    box : numpy.ndarray
-        ``(2, 3)`` min/max corners relative to the light.
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` min/max corners relative to the light.
 
     Returns
     -------
-    int
-        Bit ``f`` is set when face ``f``'s 90-degree pyramid and the box may
-        overlap (conservative: never misses an overlap).
+    numpy.ndarray
+        ``(n,)`` int masks: bit ``f`` is set when face ``f``'s 90-degree
+        pyramid and the box may overlap (conservative: never misses an overlap).
 
     Examples
     --------
     >>> import numpy as np
-    >>> from pvshadows.geometry.transforms import faces_touching_box
-    >>> faces_touching_box(np.array([[2.0, -0.5, -0.5], [3.0, 0.5, 0.5]]))  # only +X
-    1
+    >>> from pvshadows.geometry.transforms import faces_touching_boxes
+    >>> faces_touching_boxes(np.array([[[2.0, -0.5, -0.5], [3.0, 0.5, 0.5]]]))  # only +X
+    array([1])
     """
-    box = np.asarray(box, dtype=np.float64)
+    boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
+    low, high = boxes[:, 0], boxes[:, 1]
     # in front of the face's plane through the light, and inside its four side planes
-    ahead = np.maximum(_FACE_FORWARD @ box[0], _FACE_FORWARD @ box[1]) >= 0.0
-    sides = np.maximum(_FACE_SIDES * box[0], _FACE_SIDES * box[1]).sum(axis=2) >= 0.0
-    inside = ahead & sides.all(axis=1)
-    return int((inside * _FACE_BITS).sum())
+    ahead = np.maximum(low @ _FACE_FORWARD.T, high @ _FACE_FORWARD.T) >= 0.0
+    sides = np.maximum(_FACE_SIDES * low[:, None, None], _FACE_SIDES * high[:, None, None])
+    inside = ahead & (sides.sum(axis=3) >= 0.0).all(axis=2)
+    return inside.astype(np.int64) @ _FACE_BITS
 
 
 def _face_sides(forward: tuple[float, float, float]) -> list[np.ndarray]:

@@ -5,7 +5,6 @@ from __future__ import annotations
 from pvshadows import _vtk as vtk
 from pvshadows.gl.buffers import TriangleBuffers
 from pvshadows.scene.snapshot import ActorState
-from pvshadows.scene.triangles import vtk_id
 
 
 class ActorBuffers:
@@ -34,7 +33,7 @@ class ActorBuffers:
         TriangleBuffers
             Its triangles on the GPU.
         """
-        key = vtk_id(state.actor)
+        key = state.key()[0]
         version = state.triangles.version
         cached = self._buffers.get(key)
         if cached is not None and cached[0] == version:
@@ -44,6 +43,29 @@ class ActorBuffers:
         buffers = TriangleBuffers(self._window, state.triangles.points, state.triangles.triangles)
         self._buffers[key] = (version, buffers)
         return buffers
+
+    def get_all(self, states: list[ActorState]) -> list[TriangleBuffers]:
+        """Return the buffers of several actors (see :meth:`get`).
+
+        Parameters
+        ----------
+        states : list of ActorState
+            The actors this frame.
+
+        Returns
+        -------
+        list of TriangleBuffers
+            Their triangles on the GPU, in the same order.
+        """
+        kept = self._buffers
+        found = []
+        for state in states:
+            cached = kept.get(state.key()[0])
+            if cached is None or cached[0] != state.triangles.version:
+                found.append(self.get(state))
+            else:
+                found.append(cached[1])
+        return found
 
     def keep_only(self, states: list[ActorState]) -> None:
         """Release the buffers of actors that are gone.

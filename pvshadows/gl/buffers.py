@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import ctypes
 from collections.abc import Callable, Sequence
-from typing import Protocol
+from dataclasses import dataclass
+from functools import cache
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -58,7 +60,8 @@ class IndexedBuffers:
         )
         gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, 0)
 
-    def _array_for(self, location: int) -> int:
+    def vertex_array(self, location: int) -> int:
+        """Return the vertex array feeding these buffers to attribute ``location`` (made once)."""
         gl = self._gl
         if location not in self._arrays:
             array = int(gl.glGenVertexArrays(1))
@@ -113,7 +116,7 @@ class IndexedBuffers:
         from OpenGL.raw.GL.VERSION.GL_1_1 import glDrawElements
         from OpenGL.raw.GL.VERSION.GL_3_0 import glBindVertexArray
 
-        glBindVertexArray(self._array_for(location))
+        glBindVertexArray(self.vertex_array(location))
         glDrawElements(mode, count, _UNSIGNED_INT, ctypes.c_void_p(4 * first))
 
     def release(self) -> None:
@@ -151,25 +154,74 @@ class TriangleBuffers(IndexedBuffers):
         self.draw(program, self._gl.GL_TRIANGLES, 0, self.n_indices)
 
 
-class CasterDraw(Protocol):
-    """What :func:`draw_casters` needs of one caster."""
+@dataclass(frozen=True)
+class CasterDraws:
+    """The casters one pass draws, side by side: one object per pass, not one per caster.
 
-    @property
-    def buffers(self) -> IndexedBuffers:
-        """Its triangles on the GPU."""
+    Attributes
+    ----------
+    buffers : sequence of IndexedBuffers
+        Each caster's triangles on the GPU.
+    model_to_light : numpy.ndarray
+        ``(n, 4, 4)`` float64: each caster's buffer coordinates to the light's space.
+    culls : sequence of {"front", "back", None}
+        Each caster's side of its triangles not to draw.
+    """
 
-    @property
-    def model_to_light(self) -> np.ndarray:
-        """``(4, 4)`` from its buffers' coordinates to the light's space."""
+    buffers: Sequence[IndexedBuffers]
+    model_to_light: np.ndarray
+    culls: Sequence[str | None]
 
-    @property
-    def cull(self) -> str | None:
-        """The side of its triangles not to draw, or ``None``."""
+    def __len__(self) -> int:
+        return len(self.buffers)
+
+    def subset(self, keep: np.ndarray) -> CasterDraws:
+        """Return the casters where ``keep`` (an ``(n,)`` bool array) is true.
+
+        Parameters
+        ----------
+        keep : numpy.ndarray
+            Which casters to keep.
+
+        Returns
+        -------
+        CasterDraws
+            Those casters, in the same order.
+        """
+        chosen = np.flatnonzero(keep).tolist()
+        return CasterDraws(
+            [self.buffers[i] for i in chosen],
+            self.model_to_light[chosen],
+            [self.culls[i] for i in chosen],
+        )
+
+
+@cache
+def _raw_calls() -> SimpleNamespace:
+    """Return plain ctypes bindings of the GL calls of the caster loop.
+
+    Looked up in the GL library PyOpenGL loaded for the window's platform,
+    as PyOpenGL itself does for core functions, but declared with ctypes'
+    own argument types: PyOpenGL's converters cost more than the calls.
+    """
+    from OpenGL import platform
+
+    library = platform.PLATFORM.GL
+    c_int, c_uint = ctypes.c_int, ctypes.c_uint
+
+    def bound(name: str, *arguments: type) -> Callable:
+        return ctypes.CFUNCTYPE(None, *arguments)((name, library))
+
+    return SimpleNamespace(
+        matrix=bound("glUniformMatrix4fv", c_int, c_int, ctypes.c_ubyte, ctypes.c_void_p),
+        bind=bound("glBindVertexArray", c_uint),
+        draw=bound("glDrawElements", c_uint, c_int, c_uint, ctypes.c_void_p),
+    )
 
 
 def draw_casters(
     program: vtk.vtkShaderProgram,
-    casters: Sequence[CasterDraw],
+    casters: CasterDraws,
     cull: Callable[[str | None], None],
     matrix_uniform: str = "modelToLight",
 ) -> None:
@@ -177,38 +229,45 @@ def draw_casters(
 
     Every caster's matrix is converted to float32 columns in one numpy call
     and set by location with the raw ``glUniformMatrix4fv``; each caster then
-    costs that call, its culling (called only on a change) and its draw.
-    Drawing casters one ``vtkShaderProgram.SetUniformMatrix4x4v`` at a time
-    cost about three times as much: most of a light's pass over 500 casters.
+    costs that call, its vertex array's binding, its draw and a culling
+    call when its side differs from the last caster's. Drawing casters one
+    ``vtkShaderProgram.SetUniformMatrix4x4v`` at a time cost about three
+    times as much: most of a light's pass over 500 casters.
 
     Parameters
     ----------
     program : vtk.vtkShaderProgram
         The bound program: ``in vec3 position`` and ``uniform mat4``
         ``matrix_uniform``.
-    casters : sequence of CasterDraw
-        What to draw, each with its buffers, matrix and side to cull.
+    casters : CasterDraws
+        What to draw: buffers, matrices and sides to cull.
     cull : callable
         Sets the side to cull (:class:`pvshadows.passes.gl_state.FaceCulling`).
     matrix_uniform : str, default: "modelToLight"
         The name of the matrix uniform.
     """
-    if not casters:
+    if not len(casters):
         return
-    from OpenGL.raw.GL.VERSION.GL_2_0 import glGetUniformLocation, glUniformMatrix4fv
-    from OpenGL.raw.GL.VERSION.GL_3_0 import glBindVertexArray
+    from OpenGL.raw.GL.VERSION.GL_2_0 import glGetUniformLocation
 
+    gl = _raw_calls()
     location = glGetUniformLocation(program.GetHandle(), matrix_uniform.encode())
     position = program.FindAttributeArray("position")
-    stacked = np.array([caster.model_to_light for caster in casters], dtype=np.float64)
-    columns = np.ascontiguousarray(stacked.transpose(0, 2, 1), dtype=np.float32)
+    columns = np.ascontiguousarray(casters.model_to_light.transpose(0, 2, 1), dtype=np.float32)
     base = columns.ctypes.data
+    set_matrix, bind, draw = gl.matrix, gl.bind, gl.draw
     triangles = 0x0004  # GL_TRIANGLES
-    for i, caster in enumerate(casters):
-        glUniformMatrix4fv(location, 1, 0, ctypes.c_void_p(base + 64 * i))
-        cull(caster.cull)
-        caster.buffers.draw_in_array(position, triangles)
-    glBindVertexArray(0)
+    side: str | bool | None = False  # not a side: the first caster sets culling
+    for i, (buffers, culled) in enumerate(zip(casters.buffers, casters.culls, strict=True)):
+        if not buffers.n_indices:
+            continue
+        set_matrix(location, 1, 0, base + 64 * i)
+        if culled != side:
+            cull(culled)
+            side = culled
+        bind(buffers.vertex_array(position))
+        draw(triangles, buffers.n_indices, _UNSIGNED_INT, None)
+    bind(0)
 
 
 class EmptyArray:

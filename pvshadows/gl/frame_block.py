@@ -19,6 +19,7 @@ start of each of the renderer's frames, after pvshadows' own passes.
 
 from __future__ import annotations
 
+import ctypes
 from collections.abc import Mapping
 from typing import NamedTuple
 
@@ -82,10 +83,17 @@ class FrameBlock:
     """
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
-        self._gl = opengl_for(window)
-        self._buffer = int(self._gl.glGenBuffers(1))
-        self._capacity = 8
-        self._data = b""
+        gl = opengl_for(window)
+        # The raw entry points skip PyOpenGL's argument wrappers; imported here, once
+        # PyOpenGL is loaded for the window's platform.
+        from OpenGL.raw.GL.VERSION.GL_1_5 import glBindBuffer, glBufferData
+        from OpenGL.raw.GL.VERSION.GL_3_0 import glBindBufferBase
+
+        self._gl = gl
+        self._bind, self._send, self._bind_base = glBindBuffer, glBufferData, glBindBufferBase
+        self._buffer = int(gl.glGenBuffers(1))
+        self._data = np.zeros(0, dtype=np.float32)
+        self._sent = b""
         self.uploads = 0
 
     def update(
@@ -98,6 +106,7 @@ class FrameBlock:
 
         The buffer holds at least 8 entries, and twice the entries asked for
         whenever more are: never fewer than any receiver's block declares.
+        Only a block that differs from the last one sent is uploaded.
 
         Parameters
         ----------
@@ -124,34 +133,35 @@ class FrameBlock:
         >>> block.uploads
         1
         """
-        from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData
-        from OpenGL.raw.GL.VERSION.GL_3_0 import glBindBufferBase
-
-        gl = self._gl
-        self._capacity = max(self._capacity, 2 * (max(entries, default=-1) + 1))
-        header = np.zeros(HEADER_FLOATS, dtype=np.float32)
-        header[:1].view(np.int32)[0] = probe
-        header[4:] = viewport
-        block = np.zeros((self._capacity, ENTRY_FLOATS), dtype=np.float32)
+        capacity = max(8, 2 * (max(entries, default=-1) + 1))
+        size = HEADER_FLOATS + capacity * ENTRY_FLOATS
+        data = self._data
+        if data.size < size:
+            data = self._data = np.zeros(size, dtype=np.float32)
+        else:
+            data[:] = 0.0
+        data[:1].view(np.int32)[0] = probe
+        data[4:HEADER_FLOATS] = viewport
+        block = data[HEADER_FLOATS:].reshape(-1, ENTRY_FLOATS)
         # GLSL reads matrices by columns: each stored matrix is the transpose
         for index, entry in entries.items():
             row = block[index]
-            row[0:16] = entry.view_to_light.T.ravel()
-            row[16:32] = np.ravel(entry.pack)
-            if entry.light_to_clip is not None:
-                row[32:48] = entry.light_to_clip.T.ravel()
-            else:
-                row[32:48] = _EYE.ravel()
+            row[0:16].reshape(4, 4)[:] = entry.view_to_light.T
+            row[16:32].reshape(4, 4)[:] = entry.pack
+            light_to_clip = _EYE if entry.light_to_clip is None else entry.light_to_clip
+            row[32:48].reshape(4, 4)[:] = light_to_clip.T
             row[48:52] = entry.light_vc
             row[52] = entry.strength
-        data = header.tobytes() + block.tobytes()
-        if data != self._data:
-            gl.glBindBuffer(gl.GL_UNIFORM_BUFFER, self._buffer)
-            glBufferData(gl.GL_UNIFORM_BUFFER, len(data), data, gl.GL_DYNAMIC_DRAW)
-            gl.glBindBuffer(gl.GL_UNIFORM_BUFFER, 0)
-            self._data = data
+        gl = self._gl
+        sent = data.tobytes()  # compared as bytes: a NaN parameter equals itself
+        if sent != self._sent:
+            self._bind(gl.GL_UNIFORM_BUFFER, self._buffer)
+            pointer = ctypes.c_void_p(data.ctypes.data)
+            self._send(gl.GL_UNIFORM_BUFFER, data.nbytes, pointer, gl.GL_DYNAMIC_DRAW)
+            self._bind(gl.GL_UNIFORM_BUFFER, 0)
+            self._sent = sent
             self.uploads += 1
-        glBindBufferBase(gl.GL_UNIFORM_BUFFER, BINDING, self._buffer)
+        self._bind_base(gl.GL_UNIFORM_BUFFER, BINDING, self._buffer)
 
     def release(self) -> None:
         """Delete the buffer."""

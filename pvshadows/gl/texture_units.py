@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 from pvshadows import _vtk as vtk
-from pvshadows.gl.binding import opengl_for
+
+#: ``GL_TEXTURE0``: unit ``n`` is ``GL_TEXTURE0 + n``.
+GL_TEXTURE0 = 0x84C0
 
 
 def park_active_unit(window: vtk.vtkOpenGLRenderWindow) -> int:
@@ -40,5 +42,5 @@ def park_active_unit(window: vtk.vtkOpenGLRenderWindow) -> int:
     if unit < 0:
         return -1
     units.Free(unit)
-    window.GetState().vtkglActiveTexture(opengl_for(window).GL_TEXTURE0 + unit)
+    window.GetState().vtkglActiveTexture(GL_TEXTURE0 + unit)
     return unit

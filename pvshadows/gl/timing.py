@@ -78,9 +78,11 @@ class PassTimer:
         wait : bool, default: False
             Wait for every pending query (tests and shutdown).
         """
+        self._frame += 1
+        if not self._pending:
+            return
         from OpenGL.raw.GL.VERSION.GL_3_3 import glGetQueryObjectui64v
 
-        self._frame += 1
         gl = self._gl
         ready, begun, ended = ctypes.c_uint64(0), ctypes.c_uint64(0), ctypes.c_uint64(0)
         kept = []

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.geometry.transforms import column_major, cube_face_projections, faces_touching_box
-from pvshadows.gl.buffers import TriangleBuffers, draw_casters
+from pvshadows.geometry.transforms import (
+    column_major,
+    cube_face_projections,
+    faces_touching_boxes,
+)
+from pvshadows.gl.buffers import CasterDraws, draw_casters
 from pvshadows.gl.cube_array import CubeSlot
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthCube
@@ -17,52 +19,29 @@ from pvshadows.model.report import PassReport
 from pvshadows.passes.gl_state import FaceCulling, depth_only_state
 
 
-@dataclass
-class CubeCaster:
-    """One caster as the cube pass draws it.
-
-    Attributes
-    ----------
-    buffers : TriangleBuffers
-        Its triangles on the GPU, in shifted model coordinates.
-    model_to_light : numpy.ndarray
-        ``(4, 4)`` float64 from those coordinates to world axes centred on
-        the light.
-    face_mask : int
-        Bit mask of the faces whose frustum may hold it.
-    cull : {"front", "back"} or None
-        The side of its triangles not to draw.
-    """
-
-    buffers: TriangleBuffers
-    model_to_light: np.ndarray
-    face_mask: int
-    cull: str | None = None
-
-
-def caster_face_mask(box_from_light: np.ndarray) -> int:
-    """Return which cube faces a caster's light-relative bounds may touch.
+def caster_face_masks(boxes_from_light: np.ndarray) -> np.ndarray:
+    """Return which cube faces each caster's light-relative bounds may touch.
 
     Parameters
     ----------
-    box_from_light : numpy.ndarray
-        ``(2, 3)`` bounds relative to the light.
+    boxes_from_light : numpy.ndarray
+        ``(n, 2, 3)`` bounds relative to the light.
 
     Returns
     -------
-    int
-        Face bit mask (all six when the light is inside the box).
+    numpy.ndarray
+        ``(n,)`` face bit masks (all six for a box holding the light).
 
     Examples
     --------
     >>> import numpy as np
-    >>> from pvshadows.passes.cube_depth import caster_face_mask
-    >>> caster_face_mask(np.array([[-1.0, -1, -1], [1, 1, 1]]))
-    63
+    >>> from pvshadows.passes.cube_depth import caster_face_masks
+    >>> caster_face_masks(np.array([[[-1.0, -1, -1], [1, 1, 1]], [[2, -0.5, -0.5], [3, 0.5, 0.5]]]))
+    array([63,  1])
     """
-    if np.all(box_from_light[0] <= 0.0) and np.all(box_from_light[1] >= 0.0):
-        return 0b111111
-    return faces_touching_box(box_from_light)
+    boxes = np.asarray(boxes_from_light, dtype=np.float64).reshape(-1, 2, 3)
+    holds_light = np.all(boxes[:, 0] <= 0.0, axis=1) & np.all(boxes[:, 1] >= 0.0, axis=1)
+    return np.where(holds_light, 0b111111, faces_touching_boxes(boxes))
 
 
 class CubeDepthPass:
@@ -92,7 +71,8 @@ class CubeDepthPass:
     def render(
         self,
         cube: DepthCube | CubeSlot,
-        casters: list[CubeCaster],
+        casters: CasterDraws,
+        face_masks: np.ndarray,
         far: float,
         passes: str,
         timer: PassTimer,
@@ -103,8 +83,10 @@ class CubeDepthPass:
         ----------
         cube : DepthCube or CubeSlot
             The target: a cube of its own or one in a cube map array.
-        casters : list of CubeCaster
-            What to draw, with the faces each may touch.
+        casters : CasterDraws
+            What to draw.
+        face_masks : numpy.ndarray
+            ``(n,)`` the faces each caster may touch (:func:`caster_face_masks`).
         far : float
             Distance that maps to depth 1.
         passes : {"single", "six"}
@@ -122,9 +104,7 @@ class CubeDepthPass:
         if passes not in ("single", "six"):
             msg = f"the cube pass draws passes='single' or 'six', not {passes!r} (planned?)"
             raise ValueError(msg)
-        face_mask = 0
-        for caster in casters:
-            face_mask |= caster.face_mask
+        face_mask = int(np.bitwise_or.reduce(face_masks, initial=0))
         projections = cube_face_projections(far * 1e-4, far)
         program = self._program(passes)
         records: list[PassReport] = []
@@ -145,12 +125,12 @@ class CubeDepthPass:
                     draw_casters(program, casters, cull)
             else:
                 for face in range(6):
-                    drawn = [c for c in casters if c.face_mask & (1 << face)]
+                    drawn = casters.subset(face_masks & (1 << face) != 0)
                     record = PassReport(f"cube face {_FACE_NAMES[face]}", "run")
                     records.append(record)
                     with timer.measure(record):
                         cube.bind_cleared(face)
-                        if not drawn:
+                        if not len(drawn):
                             record.status, record.detail = (
                                 "skipped",
                                 "no caster in this face's frustum",

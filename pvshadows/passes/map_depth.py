@@ -2,37 +2,16 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import column_major
-from pvshadows.gl.buffers import TriangleBuffers, draw_casters
+from pvshadows.gl.buffers import CasterDraws, draw_casters
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthMap
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.report import PassReport
 from pvshadows.passes.gl_state import FaceCulling, depth_only_state
-
-
-@dataclass
-class MapCaster:
-    """One caster as the map pass draws it.
-
-    Attributes
-    ----------
-    buffers : TriangleBuffers
-        Its triangles on the GPU, in shifted model coordinates.
-    model_to_light : numpy.ndarray
-        ``(4, 4)`` float64 from those coordinates to the light's space.
-    cull : {"front", "back"} or None
-        The side of its triangles not to draw.
-    """
-
-    buffers: TriangleBuffers
-    model_to_light: np.ndarray
-    cull: str | None = None
 
 
 class MapDepthPass:
@@ -60,7 +39,7 @@ class MapDepthPass:
     def render(
         self,
         depth: DepthMap,
-        casters: list[MapCaster],
+        casters: CasterDraws,
         light_to_clip: np.ndarray,
         depth_range: float,
         *,
@@ -74,7 +53,7 @@ class MapDepthPass:
         ----------
         depth : DepthMap
             The target.
-        casters : list of MapCaster
+        casters : CasterDraws
             What to draw.
         light_to_clip : numpy.ndarray
             The map's projection.

@@ -37,11 +37,6 @@ def frustum_planes(camera: vtk.vtkCamera, aspect: float) -> np.ndarray:
     return clip_planes(np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)]))
 
 
-#: Each frustum plane is the clip matrix's last row plus or minus one of its first three.
-_ROWS = np.array([0, 0, 1, 1, 2, 2])
-_SIDES = np.array([[1.0], [-1.0], [1.0], [-1.0], [1.0], [-1.0]])
-
-
 def clip_planes(m: np.ndarray) -> np.ndarray:
     """Return the six frustum planes of a world-to-clip matrix (depth in [-1, 1]).
 
@@ -62,8 +57,12 @@ def clip_planes(m: np.ndarray) -> np.ndarray:
     >>> clip_planes(np.eye(4))[0].tolist()
     [1.0, 0.0, 0.0, 1.0]
     """
-    planes = m[3] + _SIDES * m[_ROWS]
-    return planes / np.sqrt(np.square(planes[:, :3]).sum(axis=1, keepdims=True))
+    # Each plane is the last row plus or minus one of the first three.
+    planes = np.empty((6, 4))
+    planes[0::2] = m[3] + m[:3]
+    planes[1::2] = m[3] - m[:3]
+    planes /= np.sqrt(np.square(planes[:, :3]).sum(axis=1, keepdims=True))
+    return planes
 
 
 def box_in_frustum(box: np.ndarray, planes: np.ndarray) -> bool:
@@ -121,8 +120,11 @@ def boxes_in_frustum(boxes: np.ndarray, planes: np.ndarray) -> np.ndarray:
     [True, False]
     """
     boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
-    farthest = np.where(planes[None, :, :3] >= 0.0, boxes[:, 1:2, :], boxes[:, 0:1, :])
-    distance = np.sum(planes[None, :, :3] * farthest, axis=2) + planes[None, :, 3]
+    # Each plane's distance to the box corner farthest along its normal: the
+    # normal's positive parts meet the maximum corner, its negative parts the minimum.
+    normals = planes[:, :3]
+    distance = boxes[:, 1] @ np.maximum(normals, 0.0).T + boxes[:, 0] @ np.minimum(normals, 0.0).T
+    distance += planes[:, 3]
     return np.all(distance >= 0.0, axis=1)
 
 

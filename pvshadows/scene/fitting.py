@@ -9,7 +9,9 @@ All of it is computed in double precision.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -173,6 +175,7 @@ class SunFit:
         """Return a value that changes whenever the map's coverage changes."""
         return (self.rotation.tobytes(), self.origin.tobytes(), self.half_width, self.depth)
 
+    @cached_property
     def _near_center(self) -> np.ndarray:
         return self.rotation[:3, :3] @ self.origin
 
@@ -194,13 +197,15 @@ class SunFit:
         bool
             Whether to keep this map.
         """
-        if self.resolution != needed.resolution or not np.array_equal(
-            self.rotation, needed.rotation
+        if self.resolution != needed.resolution or (
+            self.rotation is not needed.rotation
+            and not np.array_equal(self.rotation, needed.rotation)
         ):
             return False
-        mine, theirs = self._near_center(), needed._near_center()
-        across = np.all(np.abs(theirs[:2] - mine[:2]) + needed.half_width <= self.half_width)
-        along = mine[2] <= theirs[2] and theirs[2] + needed.depth <= mine[2] + self.depth
+        (x, y, z), (x_needed, y_needed, z_needed) = self._near_center, needed._near_center
+        slack = self.half_width - needed.half_width
+        across = abs(x_needed - x) <= slack and abs(y_needed - y) <= slack
+        along = z <= z_needed and z_needed + needed.depth <= z + self.depth
         return bool(across and along and self.half_width <= 2.0 * needed.half_width)
 
     def casters_in(self, actors: list[ActorState]) -> list[ActorState]:
@@ -220,7 +225,7 @@ class SunFit:
         if not casters:
             return []
         boxes = _light_boxes(self.rotation, np.array([a.bounds for a in casters]))
-        center = self._near_center()[:2]
+        center = self._near_center[:2]
         inside = np.all(boxes[:, 1, :2] >= center - self.half_width, axis=1) & np.all(
             boxes[:, 0, :2] <= center + self.half_width, axis=1
         )
@@ -234,11 +239,6 @@ def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
 
 #: The corners of clip space's cube, homogeneous.
 _CLIP_CORNERS = np.array([[x, y, z, 1.0] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
-
-
-def _view_corners(world_to_clip: np.ndarray) -> np.ndarray:
-    world = _CLIP_CORNERS @ np.linalg.inv(world_to_clip).T
-    return world[:, :3] / world[:, 3:4]
 
 
 def _sheet_corners(casters: list[ActorState], receivers: list[ActorState]) -> np.ndarray:
@@ -318,6 +318,26 @@ class SunActors:
     receivers: np.ndarray
     casters: np.ndarray
 
+    @cached_property
+    def receiver_extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The receivers' low and high corners across the light, and their far ends."""
+        return (
+            self.receivers[:, 0, :2].copy(),
+            self.receivers[:, 1, :2].copy(),
+            self.receivers[:, 1, 2].copy(),
+        )
+
+    @cached_property
+    def caster_extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The casters' lowest and highest corners across the light, their near and far ends."""
+        boxes = self.casters
+        return (
+            boxes[:, 0, :2].copy(),
+            boxes[:, 1, :2].copy(),
+            boxes[:, 0, 2].copy(),
+            boxes[:, 1, 2].copy(),
+        )
+
 
 def sun_actors(pose: LightPose, actors: list[ActorState]) -> SunActors | None:
     """Return what a directional light's fit reads of the actors (``None`` if it can cast nothing).
@@ -352,7 +372,7 @@ def sun_actors(pose: LightPose, actors: list[ActorState]) -> SunActors | None:
     )
 
 
-def sun_fit(actors: SunActors, world_to_clip: np.ndarray, resolution: int) -> SunFit | None:
+def sun_fit(actors: SunActors, clip_to_world: np.ndarray, resolution: int) -> SunFit | None:
     """Fit a directional light's map to the casters that can shadow a visible receiver.
 
     The region across the light is what the camera sees of the receivers,
@@ -366,9 +386,9 @@ def sun_fit(actors: SunActors, world_to_clip: np.ndarray, resolution: int) -> Su
     ----------
     actors : SunActors
         The light's receivers and casters in its axes.
-    world_to_clip : numpy.ndarray
-        ``(4, 4)`` the camera's world-to-clip matrix
-        (:attr:`pvshadows.scene.view.FrameView.world_to_clip`).
+    clip_to_world : numpy.ndarray
+        ``(4, 4)`` the inverse of the camera's world-to-clip matrix
+        (:attr:`pvshadows.scene.view.FrameView.clip_to_world`).
     resolution : int
         Texels per side.
 
@@ -378,32 +398,30 @@ def sun_fit(actors: SunActors, world_to_clip: np.ndarray, resolution: int) -> Su
         ``None`` when no caster can shadow a visible receiver.
     """
     rotation = actors.rotation
-    view = _view_corners(world_to_clip) @ rotation[:3, :3].T
-    view_lo, view_hi = view.min(axis=0), view.max(axis=0)
-    seen = actors.receivers
-    lo = np.maximum(seen[:, 0, :2], view_lo[:2])
-    hi = np.minimum(seen[:, 1, :2], view_hi[:2])
-    visible = np.all(lo <= hi, axis=1)
+    # The view's corners in light axes: the rotation keeps the homogeneous weight.
+    view = _CLIP_CORNERS @ (rotation @ clip_to_world).T
+    view = view[:, :2] / view[:, 3:4]
+    receiver_lo, receiver_hi, receiver_far = actors.receiver_extents
+    lo = np.maximum(receiver_lo, view.min(axis=0))
+    hi = np.minimum(receiver_hi, view.max(axis=0))
+    visible = (lo <= hi).all(axis=1)
     if not visible.any():
         return None
     region_lo, region_hi = lo[visible].min(axis=0), hi[visible].max(axis=0)
-    boxes = actors.casters
-    over = np.all(boxes[:, 1, :2] >= region_lo, axis=1) & np.all(
-        boxes[:, 0, :2] <= region_hi, axis=1
-    )
+    caster_lo, caster_hi, caster_near, caster_far = actors.caster_extents
+    over = (caster_hi >= region_lo).all(axis=1) & (caster_lo <= region_hi).all(axis=1)
     if not over.any():
         return None
-    boxes = boxes[over]
-    fit_lo = np.maximum(boxes[:, 0, :2].min(axis=0), region_lo)
-    fit_hi = np.minimum(boxes[:, 1, :2].max(axis=0), region_hi)
-    size = float(max(np.max(fit_hi - fit_lo), 1e-30))
-    size = 2.0 ** (np.ceil(np.log2(size) * SIZE_STEPS_PER_OCTAVE) / SIZE_STEPS_PER_OCTAVE)
+    fit_lo = np.maximum(caster_lo[over].min(axis=0), region_lo)
+    fit_hi = np.minimum(caster_hi[over].max(axis=0), region_hi)
+    size = max(float((fit_hi - fit_lo).max()), 1e-30)
+    size = 2.0 ** (math.ceil(math.log2(size) * SIZE_STEPS_PER_OCTAVE) / SIZE_STEPS_PER_OCTAVE)
     texel = size / (resolution - 2 * MARGIN_TEXELS)
     center = np.round(0.5 * (fit_lo + fit_hi) / texel) * texel
-    near = float(boxes[:, 0, 2].min())
-    far = float(max(boxes[:, 1, 2].max(), seen[visible, 1, 2].max()))
-    step = 2.0 ** np.ceil(np.log2(max(far - near, 1e-30))) / 16.0
-    near = np.floor(near / step) * step - step
-    far = np.ceil(far / step) * step + step
+    near = float(caster_near[over].min())
+    far = max(float(caster_far[over].max()), float(receiver_far[visible].max()))
+    step = 2.0 ** math.ceil(math.log2(max(far - near, 1e-30))) / 16.0
+    near = math.floor(near / step) * step - step
+    far = math.ceil(far / step) * step + step
     origin = rotation[:3, :3].T @ np.array([center[0], center[1], near])
     return SunFit(rotation, origin, texel * resolution / 2.0, far - near, resolution)

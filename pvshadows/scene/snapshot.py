@@ -93,6 +93,11 @@ class ActorState:
         return (vtk_id(self.actor), self.triangles.version, self.matrix.tobytes())
 
     @cached_property
+    def mirrored(self) -> bool:
+        """Whether its matrix mirrors it (turns outward-wound triangles inward)."""
+        return bool(np.linalg.det(self.matrix[:3, :3]) < 0.0)
+
+    @cached_property
     def sheet(self) -> Sheet | None:
         """The plane the actor lies in when it is flat (a ground, a wall), else ``None``.
 
@@ -170,6 +175,31 @@ class Snapshot:
     def receiver_bounds(self) -> np.ndarray:
         """World bounds of :attr:`receivers`, ``(n, 2, 3)``."""
         return _stacked(self.receivers)
+
+    @cached_property
+    def caster_models(self) -> np.ndarray:
+        """Model matrices of :attr:`casters` (:meth:`ActorState.model_matrix`), ``(n, 4, 4)``."""
+        return np.array([c.model_matrix() for c in self.casters]).reshape(-1, 4, 4)
+
+    @cached_property
+    def _caster_rows(self) -> dict[int, int]:
+        return {id(state): row for row, state in enumerate(self.casters)}
+
+    def caster_rows(self, casters: list[ActorState]) -> np.ndarray:
+        """Return where each of some of this snapshot's casters sits in :attr:`casters`.
+
+        Parameters
+        ----------
+        casters : list of ActorState
+            Casters of this snapshot.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n,)`` rows of :attr:`caster_bounds` and :attr:`caster_models`.
+        """
+        rows = self._caster_rows
+        return np.fromiter((rows[id(c)] for c in casters), dtype=np.intp, count=len(casters))
 
 
 def _stacked(states: list[ActorState]) -> np.ndarray:

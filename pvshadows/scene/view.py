@@ -8,6 +8,7 @@ so build one per render target from that target's renderer and camera.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -16,9 +17,16 @@ from pvshadows.scene.culling import clip_planes
 
 
 def _array(matrix: vtk.vtkMatrix4x4) -> np.ndarray:
-    elements = np.zeros(16)
+    elements = np.empty(16)
     matrix.DeepCopy(elements, matrix)  # one call instead of sixteen GetElement
     return elements.reshape(4, 4)
+
+
+def _inverse(matrix: np.ndarray) -> np.ndarray:
+    """Invert a ``(4, 4)`` matrix with VTK's routine (cheaper to call than numpy's)."""
+    inverse = np.empty(16)
+    vtk.vtkMatrix4x4.Invert(matrix.ravel(), inverse)
+    return inverse.reshape(4, 4)
 
 
 @dataclass(frozen=True)
@@ -92,7 +100,7 @@ class FrameView:
         world_to_clip = projection @ world_to_view
         return cls(
             world_to_view,
-            np.linalg.inv(world_to_view),
+            _inverse(world_to_view),
             projection,
             world_to_clip,
             aspect,
@@ -100,6 +108,39 @@ class FrameView:
             clip_planes(world_to_clip),
             stamp,
         )
+
+    @cached_property
+    def clip_to_world(self) -> np.ndarray:
+        """The inverse of :attr:`world_to_clip` (computed when first asked)."""
+        return _inverse(self.world_to_clip)
+
+    def to_frame_at(self, origin: np.ndarray) -> np.ndarray:
+        """Return the matrix from view coordinates to world axes moved to ``origin``.
+
+        Parameters
+        ----------
+        origin : numpy.ndarray
+            ``(3,)`` world point, e.g. a point light's position.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(4, 4)``: ``translation(-origin) @ view_to_world``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import pyvista as pv
+        >>> from pvshadows.scene.view import FrameView
+        >>> view = FrameView.of(pv.Plotter(off_screen=True).renderer)
+        >>> camera = view.to_frame_at(np.zeros(3)) @ np.array([0.0, 0.0, 0.0, 1.0])
+        >>> np.allclose(camera[:3], view.view_to_world[:3, 3])
+        True
+        """
+        # The view-to-world matrix is affine: moving the origin shifts its last column.
+        moved = self.view_to_world.copy()
+        moved[:3, 3] -= origin
+        return moved
 
     def light_in_view(self, light: np.ndarray) -> np.ndarray:
         """Return a homogeneous world light vector in view coordinates.

@@ -14,6 +14,7 @@ companion, outside the arrays.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import cast
 
@@ -27,14 +28,14 @@ from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.transmittance_textures import TransmittanceCube, TransmittanceTexture
 from pvshadows.model.plan import Cast
 from pvshadows.model.report import PassReport
-from pvshadows.passes.cube_depth import CubeCaster, CubeDepthPass, caster_face_mask
+from pvshadows.passes.cube_depth import CubeDepthPass, caster_face_masks
 from pvshadows.passes.transmittance import TranslucentCaster
 from pvshadows.scene.lights import LightKind
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.filtering import lookup_shading
-from pvshadows.techniques.per_light import PerLightMaps, face_to_cull, models_to
+from pvshadows.techniques.per_light import PerLightMaps, caster_draws, stacked_bounds
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -204,18 +205,14 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             state.planned = plan
             reused = f"light and casters unchanged since frame {state.frame}: map still right"
             return [PassReport("cube depth", "reused", reused), *companion]
-        matrices = models_to(translation(-position), opaque)
-        casters = [
-            CubeCaster(
-                context.buffers.get(caster),
-                matrix,
-                caster_face_mask(caster.bounds - position),
-                face_to_cull(caster, settings),
-            )
-            for caster, matrix in zip(opaque, matrices, strict=True)
-        ]
+        casters = caster_draws(
+            opaque, translation(-position), context.snapshot, context.buffers, settings
+        )
+        masks = caster_face_masks(stacked_bounds(opaque) - position)
         assert self._pass is not None
-        reports = self._pass.render(state.cube, casters, state.far, settings.passes, context.timer)
+        reports = self._pass.render(
+            state.cube, casters, masks, state.far, settings.passes, context.timer
+        )
         state.key, state.frame, state.planned = key, context.frame, plan
         return reports + companion
 
@@ -231,14 +228,15 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
 
         def draw(target: TransmittanceTexture) -> list[PassReport]:
             assert isinstance(target, TransmittanceCube)
+            masks = caster_face_masks(stacked_bounds(translucent) - position)
             drawn = [
                 TranslucentCaster(
                     context.buffers.get(caster),
                     translation(-position) @ caster.model_matrix(),
                     caster.transmittance,
-                    caster_face_mask(caster.bounds - position),
+                    int(mask),
                 )
-                for caster in translucent
+                for caster, mask in zip(translucent, masks, strict=True)
             ]
             return self._companions.drawer.render_cube(
                 target, drawn, far, settings.passes, context.timer
@@ -312,7 +310,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         pose = plan.pose
         i = plan.vtk_index
         spot = pose.kind is LightKind.SPOT
-        cone = np.cos(np.radians(pose.cone_angle)) if spot else -2.0
+        cone = math.cos(math.radians(pose.cone_angle)) if spot else -2.0
         uniforms = self._array_units(plan, context)
         uniforms.update(self._filters.activate(i, settings, state.cube if state.drawn else None))
         if state.companion is not None:
@@ -321,7 +319,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             uniforms[f"pvsLayer{i}"] = float(state.cube.slot)
         uniforms.update(
             {
-                f"pvsViewToLight{i}": translation(-pose.position) @ context.view.view_to_world,
+                f"pvsViewToLight{i}": context.view.to_frame_at(pose.position),
                 f"pvsParams{i}": (
                     state.far,
                     2.0 / settings.resolution,

@@ -22,7 +22,7 @@ from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import Cast
 from pvshadows.model.report import PassReport
 from pvshadows.model.settings import ShadowSettings
-from pvshadows.passes.map_depth import MapCaster, MapDepthPass
+from pvshadows.passes.map_depth import MapDepthPass
 from pvshadows.passes.transmittance import TranslucentCaster
 from pvshadows.scene.fitting import (
     SunFit,
@@ -38,7 +38,7 @@ from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
 from pvshadows.techniques.filtering import lookup_shading
-from pvshadows.techniques.per_light import PerLightMaps, face_to_cull, models_to
+from pvshadows.techniques.per_light import PerLightMaps, caster_draws
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -187,7 +187,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             state.fitted = (
                 None
                 if seen_by_sun is None
-                else sun_fit(seen_by_sun, context.view.world_to_clip, settings.resolution)
+                else sun_fit(seen_by_sun, context.view.clip_to_world, settings.resolution)
             )
             state.fit_key = (fit_key, actors)
         fit: SunFit | None = state.fitted
@@ -255,11 +255,9 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             return [PassReport("map depth", "reused", reused), *companion]
         assert self._pass is not None and state.light_to_clip is not None
         assert state.world_to_light is not None  # set with the fit, before any draw
-        matrices = models_to(state.world_to_light, opaque)
-        drawn = [
-            MapCaster(context.buffers.get(caster), matrix, face_to_cull(caster, settings))
-            for caster, matrix in zip(opaque, matrices, strict=True)
-        ]
+        drawn = caster_draws(
+            opaque, state.world_to_light, context.snapshot, context.buffers, settings
+        )
         reports = self._pass.render(
             state.depth,
             drawn,

@@ -7,10 +7,12 @@ from typing import ClassVar, Generic, Protocol, TypeVar
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.gl.actor_buffers import ActorBuffers
+from pvshadows.gl.buffers import CasterDraws
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import Cast
 from pvshadows.model.settings import ShadowSettings
-from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.techniques.filtering import FilterBindings
 from pvshadows.techniques.translucent import Companion
@@ -86,7 +88,47 @@ def face_to_cull(caster: ActorState, settings: ShadowSettings) -> str | None:
     """
     if not settings.cull_front or not caster.triangles.closed_outward():
         return None
-    return "front" if np.linalg.det(caster.matrix[:3, :3]) > 0.0 else "back"
+    return "back" if caster.mirrored else "front"
+
+
+def caster_draws(
+    casters: list[ActorState],
+    world_to_light: np.ndarray,
+    snapshot: Snapshot,
+    buffers: ActorBuffers,
+    settings: ShadowSettings,
+) -> CasterDraws:
+    """Return what a depth pass draws of some casters of a snapshot, in one batched product.
+
+    Parameters
+    ----------
+    casters : list of ActorState
+        The casters to draw, all of ``snapshot``.
+    world_to_light : numpy.ndarray
+        ``(4, 4)`` world to the light's space.
+    snapshot : Snapshot
+        This frame's actors: their stacked model matrices.
+    buffers : ActorBuffers
+        The casters' triangles on the GPU.
+    settings : ShadowSettings
+        The light's settings (the sides to cull).
+
+    Returns
+    -------
+    CasterDraws
+        Their buffers, ``world_to_light @ model_matrix`` and sides to cull.
+    """
+    models = snapshot.caster_models[snapshot.caster_rows(casters)]
+    return CasterDraws(
+        buffers.get_all(casters),
+        world_to_light @ models,
+        [face_to_cull(caster, settings) for caster in casters],
+    )
+
+
+def stacked_bounds(casters: list[ActorState]) -> np.ndarray:
+    """Return the world bounds of some actors, ``(n, 2, 3)``."""
+    return np.array([caster.bounds for caster in casters]).reshape(-1, 2, 3)
 
 
 class PerLightMaps(Generic[StateT, PassT]):
