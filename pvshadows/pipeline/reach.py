@@ -40,8 +40,7 @@ class ReachCache:
     """
 
     def __init__(self) -> None:
-        self._lights: dict[str, tuple[tuple, dict[int, tuple[ActorState, bool]]]] = {}
-        self._kept: tuple[frozenset[str], list[ActorState]] | None = None
+        self._lights: dict[str, _Answers] = {}
         #: Cone tests run since the cache was made (one per actor tested).
         self.tests = 0
 
@@ -76,38 +75,72 @@ class ReachCache:
         if pose.kind is not LightKind.SPOT:
             return np.ones(len(states), dtype=bool)
         pose_key = pose.key()
-        kept_key, kept = self._lights.get(light, (None, {}))
-        if kept_key != pose_key:
-            kept = {}
-        untested = [i for i, s in enumerate(states) if id(s) not in kept or kept[id(s)][0] is not s]
+        answers = self._lights.get(light)
+        if answers is None or answers.pose_key != pose_key:
+            answers = self._lights[light] = _Answers(pose_key)
+        hits = answers.recall(states)
+        if hits is not None:
+            return hits
+        known = answers.known()
+        if not known:
+            untested = list(range(len(states)))
+            hits = np.zeros(len(states), dtype=bool)
+        else:
+            found = [known.get(id(s), (None, False)) for s in states]
+            hits = np.fromiter((hit for _, hit in found), dtype=bool, count=len(states))
+            untested = [i for i, (kept, _) in enumerate(found) if kept is not states[i]]
         if untested:
             self.tests += len(untested)
             if bounds is None:
                 boxes = np.array([states[i].bounds for i in untested]).reshape(-1, 2, 3)
             else:
                 boxes = bounds if len(untested) == len(states) else bounds[untested]
-            inside = boxes_in_spot(boxes, pose).tolist()
-            tested = zip(untested, inside, strict=True)
-            kept = {**kept, **{id(states[i]): (states[i], hit) for i, hit in tested}}
-        self._lights[light] = (pose_key, kept)
-        return np.fromiter((kept[id(s)][1] for s in states), dtype=bool, count=len(states))
+            hits[untested] = boxes_in_spot(boxes, pose)
+        hits.setflags(write=False)  # handed out again for the same list
+        answers.keep(states, hits)
+        return hits
 
-    def keep_only(self, lights: set[str], states: list[ActorState]) -> None:
-        """Forget lights not in ``lights`` and actor states not in ``states``.
+    def keep_only(self, lights: set[str]) -> None:
+        """Forget the lights not in ``lights``.
 
         Parameters
         ----------
         lights : set of str
             Keys of the lights still planned.
-        states : list of ActorState
-            This frame's actor states.
         """
-        if self._kept is not None and self._kept[0] == lights and self._kept[1] is states:
-            return
-        self._kept = (frozenset(lights), states)
-        alive = {id(s) for s in states}
-        self._lights = {
-            key: (pose, {i: v for i, v in kept.items() if i in alive})
-            for key, (pose, kept) in self._lights.items()
-            if key in lights
-        }
+        for key in set(self._lights) - lights:
+            del self._lights[key]
+
+
+class _Answers:
+    """One light's answers at one pose: the last few lists of states asked about."""
+
+    #: Lists kept: a light is asked about its receivers and its casters each frame.
+    KEPT = 4
+
+    def __init__(self, pose_key: tuple) -> None:
+        self.pose_key = pose_key
+        self._recent: list[tuple[list[ActorState], np.ndarray]] = []
+        self._known: dict[int, tuple[ActorState, bool]] | None = None
+
+    def recall(self, states: list[ActorState]) -> np.ndarray | None:
+        """Return the answers for this very list of states, if asked before."""
+        for kept, hits in self._recent:
+            if kept is states:
+                return hits
+        return None
+
+    def known(self) -> dict[int, tuple[ActorState, bool]]:
+        """Return every state answered for, by ``id``, with its answer."""
+        if self._known is None:
+            self._known = {
+                id(state): (state, bool(hit))
+                for kept, hits in reversed(self._recent)
+                for state, hit in zip(kept, hits.tolist(), strict=True)
+            }
+        return self._known
+
+    def keep(self, states: list[ActorState], hits: np.ndarray) -> None:
+        """Remember the answers for a list of states."""
+        self._recent = [(states, hits), *self._recent[: self.KEPT - 1]]
+        self._known = None

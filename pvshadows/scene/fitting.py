@@ -18,7 +18,7 @@ import numpy as np
 from pvshadows.geometry.transforms import look_rotation, perspective, translation
 from pvshadows.scene.culling import box_corners
 from pvshadows.scene.lights import LightPose
-from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.snapshot import ActorState, Snapshot
 
 #: Sizes of the sun's map are rounded up to steps of 2 ** (1 / SIZE_STEPS_PER_OCTAVE).
 SIZE_STEPS_PER_OCTAVE = 8
@@ -107,7 +107,7 @@ def _spot_half_width(pose: LightPose, rotation: np.ndarray, boxes: np.ndarray | 
 
 
 def spot_shadowing_casters(
-    pose: LightPose, casters: list[ActorState], receivers: list[ActorState]
+    pose: LightPose, casters: list[ActorState], snapshot: Snapshot
 ) -> list[ActorState]:
     """Return the casters that can shadow a receiver of a point or spot light.
 
@@ -118,15 +118,20 @@ def spot_shadowing_casters(
     ----------
     pose : LightPose
         The light.
-    casters, receivers : list of ActorState
-        The light's casters and the renderer's receivers.
+    casters : list of ActorState
+        The light's casters.
+    snapshot : Snapshot
+        This frame's actors: the receivers and their bounds.
 
     Returns
     -------
     list of ActorState
         The casters that matter for the fit of the light's map.
     """
-    corners = _sheet_corners(casters, receivers)
+    if all(state.sheet is None for state in casters):
+        return casters
+    receivers = snapshot.receivers
+    corners = _sheet_corners(casters, snapshot.receiver_bounds)
     kept = []
     for state in casters:
         if state.sheet is None:
@@ -208,12 +213,12 @@ class SunFit:
         along = z <= z_needed and z_needed + needed.depth <= z + self.depth
         return bool(across and along and self.half_width <= 2.0 * needed.half_width)
 
-    def casters_in(self, actors: list[ActorState]) -> list[ActorState]:
+    def casters_in(self, snapshot: Snapshot) -> list[ActorState]:
         """Return the casters whose bounds overlap this map's coverage across the light.
 
         Parameters
         ----------
-        actors : list of ActorState
+        snapshot : Snapshot
             The renderer's actors.
 
         Returns
@@ -221,10 +226,10 @@ class SunFit:
         list of ActorState
             The casters to draw into the map.
         """
-        casters = [a for a in actors if a.caster]
+        casters = snapshot.casters
         if not casters:
             return []
-        boxes = _light_boxes(self.rotation, np.array([a.bounds for a in casters]))
+        boxes = _light_boxes(self.rotation, snapshot.caster_bounds)
         center = self._near_center[:2]
         inside = np.all(boxes[:, 1, :2] >= center - self.half_width, axis=1) & np.all(
             boxes[:, 0, :2] <= center + self.half_width, axis=1
@@ -241,12 +246,11 @@ def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
 _CLIP_CORNERS = np.array([[x, y, z, 1.0] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
 
 
-def _sheet_corners(casters: list[ActorState], receivers: list[ActorState]) -> np.ndarray:
+def _sheet_corners(casters: list[ActorState], receiver_bounds: np.ndarray) -> np.ndarray:
     """Return the receivers' box corners ``(n, 8, 3)`` when some caster is flat (else none)."""
     if all(state.sheet is None for state in casters):
         return np.zeros((0, 8, 3))
-    boxes = np.array([r.bounds for r in receivers]).reshape(-1, 2, 3)
-    return box_corners(boxes)
+    return box_corners(receiver_bounds)
 
 
 def _flat_and_lit_above(
@@ -260,7 +264,7 @@ def _flat_and_lit_above(
     sheet = state.sheet
     if sheet is None:
         return False
-    others = corners[[r is not state for r in receivers]]
+    others = corners[np.fromiter((r is not state for r in receivers), bool, len(receivers))]
     if sheet.size == 0.0 or others.size == 0:
         return True
     normal = -sheet.normal if sheet.normal @ direction > 0.0 else sheet.normal
@@ -339,14 +343,14 @@ class SunActors:
         )
 
 
-def sun_actors(pose: LightPose, actors: list[ActorState]) -> SunActors | None:
+def sun_actors(pose: LightPose, snapshot: Snapshot) -> SunActors | None:
     """Return what a directional light's fit reads of the actors (``None`` if it can cast nothing).
 
     Parameters
     ----------
     pose : LightPose
         The directional light.
-    actors : list of ActorState
+    snapshot : Snapshot
         The renderer's actors this frame.
 
     Returns
@@ -355,20 +359,19 @@ def sun_actors(pose: LightPose, actors: list[ActorState]) -> SunActors | None:
         ``None`` without a receiver or a caster that can shadow one.
     """
     rotation = sun_rotation(pose)
-    casters = [a for a in actors if a.caster]
-    receivers = [a for a in actors if a.receiver]
+    casters, receivers = snapshot.casters, snapshot.receivers
     if not casters or not receivers:
         return None
-    corners = _sheet_corners(casters, receivers)
+    corners = _sheet_corners(casters, snapshot.receiver_bounds)
     shadowing = [
-        c.bounds for c in casters if not _flat_and_lit_above(c, pose.direction, receivers, corners)
+        c for c in casters if not _flat_and_lit_above(c, pose.direction, receivers, corners)
     ]
     if not shadowing:
         return None
     return SunActors(
         rotation,
-        _light_boxes(rotation, np.array([a.bounds for a in receivers])),
-        _light_boxes(rotation, np.array(shadowing)),
+        _light_boxes(rotation, snapshot.receiver_bounds),
+        _light_boxes(rotation, snapshot.bounds_of(shadowing)),
     )
 
 

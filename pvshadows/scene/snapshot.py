@@ -201,6 +201,23 @@ class Snapshot:
         rows = self._caster_rows
         return np.fromiter((rows[id(c)] for c in casters), dtype=np.intp, count=len(casters))
 
+    def bounds_of(self, casters: list[ActorState]) -> np.ndarray:
+        """Return the world bounds of some of this snapshot's casters, ``(n, 2, 3)``.
+
+        Parameters
+        ----------
+        casters : list of ActorState
+            Casters of this snapshot.
+
+        Returns
+        -------
+        numpy.ndarray
+            Their rows of :attr:`caster_bounds`, gathered without stacking again.
+        """
+        if casters is self.casters:
+            return self.caster_bounds
+        return self.caster_bounds[self.caster_rows(casters)]
+
 
 def _stacked(states: list[ActorState]) -> np.ndarray:
     return np.array([s.bounds for s in states]).reshape(-1, 2, 3)

@@ -76,15 +76,15 @@ class CubeState:
             self.companion = None
 
 
-def distance_range(position: np.ndarray, casters: list) -> tuple[float, float]:
+def distance_range(position: np.ndarray, boxes: np.ndarray) -> tuple[float, float]:
     """Return the nearest and farthest distance from a light to its casters' bounds.
 
     Parameters
     ----------
     position : numpy.ndarray
         The light's position.
-    casters : list of ActorState
-        The casters.
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` the casters' world bounds.
 
     Returns
     -------
@@ -95,16 +95,13 @@ def distance_range(position: np.ndarray, casters: list) -> tuple[float, float]:
     Examples
     --------
     >>> import numpy as np
-    >>> from types import SimpleNamespace
     >>> from pvshadows.techniques.cubemap import distance_range
-    >>> box = SimpleNamespace(bounds=np.array([[1.0, -1, -1], [2, 1, 1]]))
-    >>> near, far = distance_range(np.zeros(3), [box])
+    >>> near, far = distance_range(np.zeros(3), np.array([[[1.0, -1, -1], [2, 1, 1]]]))
     >>> near, round(far, 3)
     (1.0, 2.474)
     """
     nearest, far = np.inf, 0.0
-    if casters:
-        boxes = np.array([caster.bounds for caster in casters]).reshape(-1, 2, 3)
+    if len(boxes):
         lo, hi = boxes[:, 0] - position, boxes[:, 1] - position
         outside = np.maximum(np.maximum(lo, -hi), 0.0)
         nearest = float(np.linalg.norm(outside, axis=1).min())
@@ -187,7 +184,9 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             return [PassReport("cube depth", "reused", reused)]
         state.planned = None
         position = plan.pose.position
-        state.nearest, state.far = distance_range(position, plan.casters)
+        state.nearest, state.far = distance_range(
+            position, context.snapshot.bounds_of(plan.casters)
+        )
         companion = self._update_companion(plan, context, state, translucent)
         state.drawn = bool(opaque)
         if not opaque:

@@ -147,9 +147,9 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         keys = tuple(c.key() for c in inside)
         range_key = (pose.key(), settings.resolution, keys or tuple(c.key() for c in ranged))
         if range_key != state.range_key or state.range_snapshot is not context.snapshot:
-            nearest, far = distance_range(pose.position, ranged)
-            shadowing = spot_shadowing_casters(pose, inside, context.snapshot.receivers)
-            boxes = np.array([c.bounds for c in shadowing]).reshape(-1, 2, 3)
+            nearest, far = distance_range(pose.position, context.snapshot.bounds_of(ranged))
+            shadowing = spot_shadowing_casters(pose, inside, context.snapshot)
+            boxes = context.snapshot.bounds_of(shadowing)
             fit = spot_fit(pose, settings.resolution, far * 1e-4, far, boxes)
             state.range_key, state.range = range_key, (nearest, far)
             state.range_snapshot = context.snapshot
@@ -180,7 +180,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         # the view too: the same ones give the same answers.
         kept = state.sun_actors
         if kept is None or kept[0] != pose.key() or kept[1] is not actors:
-            kept = state.sun_actors = (pose.key(), actors, sun_actors(pose, actors))
+            kept = state.sun_actors = (pose.key(), actors, sun_actors(pose, context.snapshot))
         seen_by_sun = kept[2]
         fit_key = (pose.key(), settings.resolution, context.view.world_to_clip.tobytes())
         if state.fit_key is None or state.fit_key[0] != fit_key or state.fit_key[1] is not actors:
@@ -212,7 +212,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         state.fit = fit
         kept = state.casters_of
         if kept is None or kept[0] is not fit or kept[1] is not actors:
-            kept = state.casters_of = (fit, actors, fit.casters_in(actors))
+            kept = state.casters_of = (fit, actors, fit.casters_in(context.snapshot))
         drawn = kept[2]
         state.world_to_light = fit.world_to_light()
         state.light_to_clip = np.diag([1.0 / fit.half_width, 1.0 / fit.half_width, 0.0, 1.0])
