@@ -688,7 +688,7 @@ class ShadowsComponent:
             for plan in renderer.plans:
                 if plan.technique is None:
                     continue
-                if light is None or vtk_id(plan.light) == vtk_id(light):
+                if light is None or plan.key == vtk_id(light):
                     return renderer, plan
         which = "no light" if light is None else "this light"
         msg = f"{which} cast a shadow in the last frame; see pl.shadows.last_frame for why"

@@ -7,6 +7,7 @@ read them, so they live below both.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -16,6 +17,7 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.planes import PlaneChoice
 from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.triangles import vtk_id
 
 #: Technique ``"auto"`` picks for each kind of light.
 AUTO_TECHNIQUE = {LightKind.POINT: "cubemap", LightKind.SPOT: "map", LightKind.DIRECTIONAL: "map"}
@@ -91,6 +93,11 @@ class LightSlot:
     index: int
     vtk_index: int
     kind: LightKind
+
+    @cached_property
+    def key(self) -> str:
+        """The light's key (:func:`pvshadows.scene.triangles.vtk_id`), read once."""
+        return vtk_id(self.light)
 
 
 @dataclass

@@ -261,7 +261,7 @@ def plan_frame(
         if light.GetSwitch():
             vtk_index += 1
         plans.append(plan)
-    reach.keep_only({vtk_id(plan.light) for plan in plans})
+    reach.keep_only({plan.key for plan in plans})
     if memo is not None:
         memo.keep_only(plans)
         memo.planned += planned

@@ -37,6 +37,16 @@ def frustum_planes(camera: vtk.vtkCamera, aspect: float) -> np.ndarray:
     return clip_planes(np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)]))
 
 
+#: Picks each frustum plane out of a clip matrix's rows: the last plus or minus one other.
+_PLANE_ROWS = np.array(
+    [
+        [sign if row == axis else 0.0 for row in range(3)] + [1.0]
+        for axis in range(3)
+        for sign in (1.0, -1.0)
+    ]
+)
+
+
 def clip_planes(m: np.ndarray) -> np.ndarray:
     """Return the six frustum planes of a world-to-clip matrix (depth in [-1, 1]).
 
@@ -48,7 +58,8 @@ def clip_planes(m: np.ndarray) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        ``(6, 4)`` unit-normal planes, as :func:`frustum_planes` returns them.
+        ``(6, 4)`` planes, as :func:`frustum_planes` returns them (not
+        normalised: only the side of a point is read).
 
     Examples
     --------
@@ -58,11 +69,7 @@ def clip_planes(m: np.ndarray) -> np.ndarray:
     [1.0, 0.0, 0.0, 1.0]
     """
     # Each plane is the last row plus or minus one of the first three.
-    planes = np.empty((6, 4))
-    planes[0::2] = m[3] + m[:3]
-    planes[1::2] = m[3] - m[:3]
-    planes /= np.sqrt(np.square(planes[:, :3]).sum(axis=1, keepdims=True))
-    return planes
+    return _PLANE_ROWS @ m
 
 
 def box_in_frustum(box: np.ndarray, planes: np.ndarray) -> bool:

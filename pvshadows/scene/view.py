@@ -89,14 +89,16 @@ class FrameView:
         >>> view.planes.shape, round(view.aspect, 3)
         ((6, 4), 1.333)
         """
-        camera = renderer.GetActiveCamera()
-        aspect = float(renderer.GetTiledAspectRatio())
-        width, height = renderer.GetSize()
-        stamp = (camera, camera.GetMTime(), aspect, width, height)
+        # VTK's own methods, called on the class: PyVista's wrappers check every
+        # attribute they are asked for, a cost paid each frame.
+        camera = vtk.vtkRenderer.GetActiveCamera(renderer)
+        aspect = float(vtk.vtkRenderer.GetTiledAspectRatio(renderer))
+        width, height = vtk.vtkRenderer.GetSize(renderer)
+        stamp = (camera, vtk.vtkCamera.GetMTime(camera), aspect, width, height)
         if last is not None and last.stamp == stamp:
             return last
-        world_to_view = _array(camera.GetModelViewTransformMatrix())
-        projection = _array(camera.GetProjectionTransformMatrix(aspect, -1, 1))
+        world_to_view = _array(vtk.vtkCamera.GetModelViewTransformMatrix(camera))
+        projection = _array(vtk.vtkCamera.GetProjectionTransformMatrix(camera, aspect, -1, 1))
         world_to_clip = projection @ world_to_view
         return cls(
             world_to_view,

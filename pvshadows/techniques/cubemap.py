@@ -34,7 +34,6 @@ from pvshadows.scene.lights import LightKind
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
-from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, caster_draws, stacked_bounds
 from pvshadows.techniques.translucent import (
     Companion,
@@ -167,7 +166,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             The passes run, reused or skipped.
         """
         settings = plan.settings
-        state = self._states.get(vtk_id(plan.light))
+        state = self._states.get(plan.key)
         opaque, translucent = split_casters(plan.casters)
         own = bool(translucent) or self.arrays is None
         if (
@@ -178,7 +177,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             if state is not None:
                 state.release()
             state = CubeState(self._new_cube(settings.resolution, context, own))
-            self._states[vtk_id(plan.light)] = state
+            self._states[plan.key] = state
         if state.planned is plan and state.key is not None and state.companion is None:
             reused = f"light and casters unchanged since frame {state.frame}: map still right"
             return [PassReport("cube depth", "reused", reused)]
@@ -275,16 +274,13 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             The lookup call with the light's filter, and its samplers; one
             with translucent casters multiplies in what they let through.
         """
-        state = self._states[vtk_id(plan.light)]
+        state = self._states[plan.key]
         if isinstance(state.cube, CubeSlot):
             texture = str(plan.settings.resolution)
-            return lookup_shading(
-                "cubes", plan.vtk_index, plan.settings, has_map=state.drawn, texture=texture
-            )
-        return lookup_shading(
+            return self._lookup_shading("cubes", plan, has_map=state.drawn, texture=texture)
+        return self._lookup_shading(
             "cube",
-            plan.vtk_index,
-            plan.settings,
+            plan,
             has_map=state.drawn,
             translucent=state.companion is not None,
         )
@@ -304,7 +300,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         dict
             Uniform names and values for every receiver.
         """
-        state = self._states[vtk_id(plan.light)]
+        state = self._states[plan.key]
         settings = plan.settings
         pose = plan.pose
         i = plan.vtk_index
@@ -343,7 +339,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         uniforms: dict[str, object] = {}
         if allocations != self._allocations:
             for earlier in self._activated:
-                state = self._states[vtk_id(earlier.light)]
+                state = self._states[earlier.key]
                 if isinstance(state.cube, CubeSlot) and state.drawn:
                     uniforms.update(
                         self._filters.activate(earlier.vtk_index, earlier.settings, state.cube)

@@ -33,11 +33,9 @@ from pvshadows.scene.fitting import (
     sun_rotation,
 )
 from pvshadows.scene.lights import LightKind
-from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
-from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.techniques.per_light import PerLightMaps, caster_draws
 from pvshadows.techniques.translucent import (
     Companion,
@@ -107,7 +105,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         self._companions = Companions(window)
 
     def _state(self, plan: Cast) -> MapState:
-        key = vtk_id(plan.light)
+        key = plan.key
         state = self._states.get(key)
         if state is None or state.depth.resolution != plan.settings.resolution:
             if state is not None:
@@ -331,11 +329,10 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             whose map was skipped (nothing to shadow) shows no shadow, and
             one with translucent casters multiplies in what they let through.
         """
-        state = self._states[vtk_id(plan.light)]
-        return lookup_shading(
+        state = self._states[plan.key]
+        return self._lookup_shading(
             _kind(plan),
-            plan.vtk_index,
-            plan.settings,
+            plan,
             has_map=state.drawn,
             translucent=state.companion is not None,
         )
@@ -355,7 +352,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         dict
             Uniform names and values for every receiver.
         """
-        state = self._states[vtk_id(plan.light)]
+        state = self._states[plan.key]
         i = plan.vtk_index
         uniforms = self._filters.activate(i, plan.settings, state.depth if state.drawn else None)
         if state.companion is not None:

@@ -14,7 +14,8 @@ from pvshadows.model.plan import Cast
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.scene.triangles import vtk_id
-from pvshadows.techniques.filtering import FilterBindings
+from pvshadows.shaders.shading import LightShading
+from pvshadows.techniques.filtering import FilterBindings, lookup_shading
 from pvshadows.techniques.translucent import Companion
 
 
@@ -150,6 +151,34 @@ class PerLightMaps(Generic[StateT, PassT]):
         self._filters = FilterBindings(window)
         self._states: dict[str, StateT] = {}
         self._pass: PassT | None = None
+        self._shadings: dict[tuple, LightShading] = {}
+
+    def _lookup_shading(
+        self,
+        kind: str,
+        plan: Cast,
+        *,
+        has_map: bool,
+        translucent: bool = False,
+        texture: str = "",
+    ) -> LightShading:
+        """Return :func:`lookup_shading` for a light, the same object while nothing changed.
+
+        Frames then hand the receivers' edits the same shadings, compared by identity.
+        """
+        key = (kind, plan.vtk_index, plan.settings, has_map, translucent, texture)
+        shading = self._shadings.get(key)
+        if shading is None:
+            shading = lookup_shading(
+                kind,
+                plan.vtk_index,
+                plan.settings,
+                has_map=has_map,
+                translucent=translucent,
+                texture=texture,
+            )
+            self._shadings[key] = shading
+        return shading
 
     def companion_of(self, light: vtk.vtkLight) -> TransmittanceTexture | None:
         """Return the transmittance companion kept for a light, if any (for tests and debugging)."""
@@ -168,13 +197,16 @@ class PerLightMaps(Generic[StateT, PassT]):
         plans : list of Cast
             This frame's casts.
         """
-        alive = {vtk_id(p.light) for p in plans if p.technique == self.name}
+        alive = {p.key for p in plans if p.technique == self.name}
         for key in set(self._states) - alive:
             self._states.pop(key).release()
+        if len(self._shadings) > 4 * max(len(self._states), 1):
+            self._shadings.clear()
 
     def release(self) -> None:
         """Release every map, the pass's programs and the filters' textures."""
         self.keep_only([])
+        self._shadings.clear()
         if self._pass is not None:
             self._pass.release()
         self._filters.release()

@@ -212,7 +212,7 @@ class PlanarTechnique:
         self._lights: dict[str, _LightState] = {}
 
     def _state(self, plan: Cast, width: int, height: int) -> _LightState:
-        key = vtk_id(plan.light)
+        key = plan.key
         state = self._lights.get(key)
         if state is not None and state.mask.size != (width, height):
             self._lights.pop(key).mask.release()
@@ -241,7 +241,7 @@ class PlanarTechnique:
         choice = plan.plane
         width, height = context.viewport_size()
         if width < 1 or height < 1:
-            state = self._lights.pop(vtk_id(plan.light), None)
+            state = self._lights.pop(plan.key, None)
             if state is not None:
                 state.mask.release()
             return [PassReport(_PASS, "skipped", "the viewport has no pixels")]
@@ -331,7 +331,7 @@ class PlanarTechnique:
             with a facing test for every other receiver.
         """
         facing_only = facing_shading(plan.vtk_index)
-        state = self._lights.get(vtk_id(plan.light))
+        state = self._lights.get(plan.key)
         if state is None or state.plane_actor is None:
             return facing_only
         return mask_shading(
@@ -353,7 +353,7 @@ class PlanarTechnique:
         dict
             Uniform names and values for every receiver.
         """
-        state = self._lights.get(vtk_id(plan.light))
+        state = self._lights.get(plan.key)
         if state is None or state.plane_actor is None:
             return mask_uniforms(plan, context, None)
         state.active = True
@@ -379,7 +379,7 @@ class PlanarTechnique:
         plans : list of Cast
             This frame's casts.
         """
-        alive = {vtk_id(p.light) for p in plans if p.technique == self.name}
+        alive = {p.key for p in plans if p.technique == self.name}
         for key in set(self._lights) - alive:
             self._lights.pop(key).mask.release()
 

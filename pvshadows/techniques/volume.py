@@ -131,7 +131,7 @@ class VolumeTechnique:
         """
         self._context = context
         width, height = context.viewport_size()
-        light_id = vtk_id(plan.light)
+        light_id = plan.key
         if width < 1 or height < 1:
             dropped = self._lights.pop(light_id, None)
             if dropped is not None:
@@ -339,7 +339,7 @@ class VolumeTechnique:
         light_model: np.ndarray,
         extrude_to: float,
     ) -> _CpuVolume:
-        cache_key = (vtk_id(plan.light), vtk_id(caster.actor))
+        cache_key = (plan.key, vtk_id(caster.actor))
         key = (id(caster.triangles), caster.triangles.version, light_model.tobytes(), extrude_to)
         cached = self._cpu.get(cache_key)
         if cached is not None and cached.key == key:
@@ -403,7 +403,7 @@ class VolumeTechnique:
             cast from a shadow map.
         """
         own = mask_shading(plan.vtk_index)
-        state = self._lights.get(vtk_id(plan.light))
+        state = self._lights.get(plan.key)
         if state is None:
             return LightShading(plan.vtk_index, "1.0")  # nothing counted this frame (no pixels)
         if state.fallback is None:
@@ -426,7 +426,7 @@ class VolumeTechnique:
         dict
             Uniform names and values for every receiver.
         """
-        state = self._lights.get(vtk_id(plan.light))
+        state = self._lights.get(plan.key)
         if state is None:
             return {}
         uniforms = mask_uniforms(plan, context, state.mask)
@@ -485,7 +485,7 @@ class VolumeTechnique:
             This frame's casts.
         """
         using = [p for p in plans if p.technique == self.name]
-        alive = {vtk_id(p.light) for p in using}
+        alive = {p.key for p in using}
         for key in set(self._lights) - alive:
             self._lights.pop(key).mask.release()
         casters = {vtk_id(c.actor) for p in using for c in p.casters}
