@@ -7,6 +7,8 @@ the size of the scene, not of its distance from the origin.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from pvshadows import _vtk as vtk
@@ -46,13 +48,22 @@ def look_rotation(forward: np.ndarray, up: np.ndarray) -> np.ndarray:
     >>> bool(np.allclose(rotation, np.eye(4)))
     True
     """
-    f = np.asarray(forward, float) / np.linalg.norm(forward)
-    right = np.cross(f, up)
-    right /= np.linalg.norm(right)
-    true_up = np.cross(right, f)
-    rotation = np.eye(4)
-    rotation[0, :3], rotation[1, :3], rotation[2, :3] = right, true_up, -f
-    return rotation
+    # Three-vectors in Python floats: numpy's cross and norm cost far more than the sums.
+    fx, fy, fz = (float(value) for value in forward)
+    length = math.sqrt(fx * fx + fy * fy + fz * fz)
+    fx, fy, fz = fx / length, fy / length, fz / length
+    ux, uy, uz = (float(value) for value in up)
+    rx, ry, rz = fy * uz - fz * uy, fz * ux - fx * uz, fx * uy - fy * ux
+    length = math.sqrt(rx * rx + ry * ry + rz * rz)
+    rx, ry, rz = rx / length, ry / length, rz / length
+    return np.array(
+        [
+            [rx, ry, rz, 0.0],
+            [ry * fz - rz * fy, rz * fx - rx * fz, rx * fy - ry * fx, 0.0],
+            [-fx, -fy, -fz, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ]
+    )
 
 
 def perspective(fov_y_degrees: float, aspect: float, near: float, far: float) -> np.ndarray:

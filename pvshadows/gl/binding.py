@@ -374,6 +374,9 @@ def opengl_for(window: vtk.vtkRenderWindow) -> ModuleType:
     >>> GL.GL_DEPTH_COMPONENT32F > 0
     True
     """
+    matched = _matched.get(window.GetClassName())
+    if matched is not None:
+        return matched
     wanted = platform_for(window)
     if loaded_platform() is None:
         _import_pyopengl(wanted)
@@ -399,7 +402,14 @@ def opengl_for(window: vtk.vtkRenderWindow) -> ModuleType:
                     f"PYOPENGL_PLATFORM={wanted} before anything imports OpenGL."
                 )
                 raise OpenGLPlatformError(msg)
+    if wanted is not None and loaded == wanted == PLATFORM_OF_WINDOW.get(window.GetClassName()):
+        # This class of window always needs the platform PyOpenGL has: no check again.
+        _matched[window.GetClassName()] = _gl()
     return _gl()
+
+
+#: ``OpenGL.GL`` by the class names of windows whose platform PyOpenGL was loaded for.
+_matched: dict[str, ModuleType] = {}
 
 
 def _gl() -> ModuleType:

@@ -210,7 +210,15 @@ def _raw_calls() -> SimpleNamespace:
     c_int, c_uint = ctypes.c_int, ctypes.c_uint
 
     def bound(name: str, *arguments: type) -> Callable:
-        return ctypes.CFUNCTYPE(None, *arguments)((name, library))
+        prototype = ctypes.CFUNCTYPE(None, *arguments)
+        try:
+            return prototype((name, library))
+        except AttributeError:  # not exported (some libOSMesa builds): only by address
+            address = platform.PLATFORM.getExtensionProcedure(name.encode())
+            if not address:
+                msg = f"the OpenGL library of this window does not provide {name}"
+                raise RuntimeError(msg) from None
+            return prototype(address)
 
     return SimpleNamespace(
         matrix=bound("glUniformMatrix4fv", c_int, c_int, ctypes.c_ubyte, ctypes.c_void_p),
