@@ -57,15 +57,7 @@ class ActorBuffers:
         list of TriangleBuffers
             Their triangles on the GPU, in the same order.
         """
-        kept = self._buffers
-        found = []
-        for state in states:
-            cached = kept.get(state.key()[0])
-            if cached is None or cached[0] != state.triangles.version:
-                found.append(self.get(state))
-            else:
-                found.append(cached[1])
-        return found
+        return [self.get(state) for state in states]
 
     def keep_only(self, states: list[ActorState]) -> None:
         """Release the buffers of actors that are gone.

@@ -89,35 +89,12 @@ class IndexedBuffers:
         first, count : int
             Range of the index buffer to draw.
         """
-        from OpenGL.raw.GL.VERSION.GL_3_0 import glBindVertexArray
-
-        self.draw_in_array(program.FindAttributeArray("position"), mode, first, count)
-        glBindVertexArray(0)
-
-    def draw_in_array(self, location: int, mode: int, first: int = 0, count: int = -1) -> None:
-        """Draw indices through this buffer's vertex array for ``location``, left bound.
-
-        For loops over many buffers (:func:`draw_casters`): the caller
-        unbinds the vertex array once after the last draw.
-
-        Parameters
-        ----------
-        location : int
-            The attribute location of ``position`` in the bound program.
-        mode : int
-            GL primitive, e.g. ``GL_TRIANGLES``.
-        first, count : int, default: 0, -1
-            Range of the index buffer to draw (``-1``: to its end).
-        """
-        count = self.n_indices - first if count < 0 else count
         if count <= 0:
             return
-        # The raw entry points: PyOpenGL's wrappers cost more than the draw call itself.
-        from OpenGL.raw.GL.VERSION.GL_1_1 import glDrawElements
-        from OpenGL.raw.GL.VERSION.GL_3_0 import glBindVertexArray
-
-        glBindVertexArray(self.vertex_array(location))
-        glDrawElements(mode, count, _UNSIGNED_INT, ctypes.c_void_p(4 * first))
+        gl = _raw_calls()
+        gl.bind(self.vertex_array(program.FindAttributeArray("position")))
+        gl.draw(mode, count, _UNSIGNED_INT, 4 * first)
+        gl.bind(0)
 
     def release(self) -> None:
         """Delete the buffers and vertex arrays (the context must be current)."""
@@ -256,10 +233,8 @@ def draw_casters(
     """
     if not len(casters):
         return
-    from OpenGL.raw.GL.VERSION.GL_2_0 import glGetUniformLocation
-
     gl = _raw_calls()
-    location = glGetUniformLocation(program.GetHandle(), matrix_uniform.encode())
+    location = program.FindUniform(matrix_uniform)
     position = program.FindAttributeArray("position")
     columns = np.ascontiguousarray(casters.model_to_light.transpose(0, 2, 1), dtype=np.float32)
     base = columns.ctypes.data

@@ -34,7 +34,7 @@ from pvshadows.scene.lights import LightKind
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
-from pvshadows.techniques.per_light import PerLightMaps, caster_draws, stacked_bounds
+from pvshadows.techniques.per_light import PerLightMaps, caster_draws
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -206,7 +206,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         casters = caster_draws(
             opaque, translation(-position), context.snapshot, context.buffers, settings
         )
-        masks = caster_face_masks(stacked_bounds(opaque) - position)
+        masks = caster_face_masks(context.snapshot.bounds_of(opaque) - position)
         assert self._pass is not None
         reports = self._pass.render(
             state.cube, casters, masks, state.far, settings.passes, context.timer
@@ -226,7 +226,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
 
         def draw(target: TransmittanceTexture) -> list[PassReport]:
             assert isinstance(target, TransmittanceCube)
-            masks = caster_face_masks(stacked_bounds(translucent) - position)
+            masks = caster_face_masks(context.snapshot.bounds_of(translucent) - position)
             drawn = [
                 TranslucentCaster(
                     context.buffers.get(caster),

@@ -40,37 +40,6 @@ StateT = TypeVar("StateT", bound=LightState)
 PassT = TypeVar("PassT", bound=Releasable)
 
 
-def models_to(world_to_light: np.ndarray, casters: list[ActorState]) -> np.ndarray:
-    """Return each caster's model-to-light matrix, in one batched product.
-
-    Parameters
-    ----------
-    world_to_light : numpy.ndarray
-        ``(4, 4)`` world to the light's space.
-    casters : list of ActorState
-        The casters.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``(n, 4, 4)``: ``world_to_light @ caster.model_matrix()`` for each.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> import pyvista as pv
-    >>> from pvshadows.scene.snapshot import SceneReader
-    >>> from pvshadows.techniques.per_light import models_to
-    >>> pl = pv.Plotter(off_screen=True)
-    >>> _ = pl.add_mesh(pv.Cube(center=(1, 2, 3)))
-    >>> casters = SceneReader(lambda actor: "an actor").read(pl.renderer).casters
-    >>> models_to(np.eye(4), casters)[0, :3, 3].tolist()
-    [1.0, 2.0, 3.0]
-    """
-    models = np.array([caster.model_matrix() for caster in casters]).reshape(-1, 4, 4)
-    return world_to_light @ models
-
-
 def face_to_cull(caster: ActorState, settings: ShadowSettings) -> str | None:
     """Return the side of a caster's triangles its shadow map leaves out.
 
@@ -125,11 +94,6 @@ def caster_draws(
         world_to_light @ models,
         [face_to_cull(caster, settings) for caster in casters],
     )
-
-
-def stacked_bounds(casters: list[ActorState]) -> np.ndarray:
-    """Return the world bounds of some actors, ``(n, 2, 3)``."""
-    return np.array([caster.bounds for caster in casters]).reshape(-1, 2, 3)
 
 
 class PerLightMaps(Generic[StateT, PassT]):
