@@ -277,3 +277,59 @@ def test_an_actor_given_new_data_is_watched_through_that_data():
     assert counted["compared"] == 1 and counted["reread"] == 1
     (moved,) = (s for s in pl.shadows._renderers[0].snapshot.casters if s.actor is state.actor)
     assert moved.bounds[1, 2] == pytest.approx(mesh.bounds[5])
+
+
+def _derived(snapshot):
+    """What a snapshot derives from its actors, in comparable form."""
+    return {
+        "casters": [id(s) for s in snapshot.casters],
+        "receivers": [id(s) for s in snapshot.receivers],
+        "caster_index": snapshot.caster_index.tolist(),
+        "receiver_index": snapshot.receiver_index.tolist(),
+        "actor_bounds": snapshot.actor_bounds.tolist(),
+        "caster_bounds": snapshot.caster_bounds.tolist(),
+        "receiver_bounds": snapshot.receiver_bounds.tolist(),
+        "caster_models": snapshot.caster_models.tolist(),
+        "caster_sides": snapshot.caster_sides,
+        "caster_keys": snapshot.caster_keys,
+        "caster_flat": snapshot.caster_flat.tolist(),
+        "caster_triangles": snapshot.caster_triangles.tolist(),
+        "rows": snapshot.caster_rows(snapshot.casters[::-1]).tolist(),
+    }
+
+
+def test_a_snapshot_after_moved_actors_follows_the_last_and_derives_what_a_fresh_one_would():
+    """Moving actors patches last frame's derived arrays in their rows: the same values as
+    deriving them from every actor again, each row in its place."""
+    from pvshadows.scene.snapshot import Snapshot
+
+    pl, _ = crowd()
+    shadows = pl.shadows._renderers[0]
+    first = shadows.snapshot
+    flat = next(s for s in first.actors if s.sheet is not None)
+    moved = [first.casters[3].actor, first.casters[150].actor, flat.actor]
+    for step, actor in enumerate(moved):
+        actor.AddPosition(0.25 * (step + 1), -0.5, 0.1)
+    draw(pl)
+    following = shadows.snapshot
+    assert following.parent is first
+    rows = [next(i for i, s in enumerate(first.actors) if s.actor is a) for a in moved]
+    assert following.replaced == tuple(sorted(rows))
+    fresh = Snapshot(list(following.actors), following.bystanders)
+    assert _derived(following) == _derived(fresh)
+    assert _derived(following) != _derived(first)
+    # Only one generation back is kept: the next one cuts this one from its parent.
+    moved[0].AddPosition(0.1, 0.0, 0.0)
+    draw(pl)
+    assert shadows.snapshot.parent is following and following.parent is None
+
+
+def test_an_actor_that_changes_role_gives_a_fresh_snapshot():
+    pl, _ = crowd()
+    shadows = pl.shadows._renderers[0]
+    sphere = shadows.snapshot.casters[5].actor
+    sphere.prop.lighting = False  # no longer a receiver
+    draw(pl)
+    assert shadows.snapshot.parent is None
+    assert sphere not in [s.actor for s in shadows.snapshot.receivers]
+    assert sphere in [s.actor for s in shadows.snapshot.casters]

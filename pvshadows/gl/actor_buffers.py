@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.buffers import TriangleBuffers
-from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.snapshot import CASTERS, ActorState, Snapshot
 
 
 class ActorBuffers:
@@ -19,6 +19,7 @@ class ActorBuffers:
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
         self._buffers: dict[str, tuple[int, TriangleBuffers]] = {}
+        self._casters: tuple[Snapshot, list[TriangleBuffers]] | None = None
 
     def get(self, state: ActorState) -> TriangleBuffers:
         """Return the buffers of an actor, uploading them if its data changed.
@@ -44,20 +45,34 @@ class ActorBuffers:
         self._buffers[key] = (version, buffers)
         return buffers
 
-    def get_all(self, states: list[ActorState]) -> list[TriangleBuffers]:
-        """Return the buffers of several actors (see :meth:`get`).
+    def of_casters(self, snapshot: Snapshot) -> list[TriangleBuffers]:
+        """Return the buffers of a snapshot's casters (see :meth:`get`).
+
+        A snapshot that follows the last one asked about
+        (:meth:`~pvshadows.scene.snapshot.Snapshot.successor`) looks up its
+        replaced casters only.
 
         Parameters
         ----------
-        states : list of ActorState
-            The actors this frame.
+        snapshot : Snapshot
+            This frame's actors.
 
         Returns
         -------
         list of TriangleBuffers
-            Their triangles on the GPU, in the same order.
+            The triangles of :attr:`Snapshot.casters` on the GPU, in order.
         """
-        return [self.get(state) for state in states]
+        kept = self._casters
+        if kept is not None and kept[0] is snapshot:
+            return kept[1]
+        if kept is not None and snapshot.parent is kept[0]:
+            listed = list(kept[1])
+            for row, state in snapshot.patches(CASTERS):
+                listed[row] = self.get(state)
+        else:
+            listed = [self.get(state) for state in snapshot.casters]
+        self._casters = (snapshot, listed)
+        return listed
 
     def keep_only(self, states: list[ActorState]) -> None:
         """Release the buffers of actors that are gone.
@@ -67,6 +82,7 @@ class ActorBuffers:
         states : list of ActorState
             The actors of this frame.
         """
+        self._casters = None
         alive = {s.key()[0] for s in states}
         for key in set(self._buffers) - alive:
             self._buffers.pop(key)[1].release()

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from pvshadows.model.settings import ShadowSettings
-from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.snapshot import ActorState, Snapshot
 
 #: Caster triangles from which ``passes="auto"`` fills a cube one face at a time. A
 #: geometry shader sending each triangle to its faces is one draw per caster, the least
@@ -17,7 +17,7 @@ SIX_PASSES_FROM = 100_000
 
 
 def cube_passes(
-    settings: ShadowSettings, casters: list[ActorState], notes: list[str]
+    settings: ShadowSettings, casters: list[ActorState], snapshot: Snapshot, notes: list[str]
 ) -> ShadowSettings:
     """Return ``settings`` with ``passes="auto"`` resolved for these casters.
 
@@ -27,6 +27,8 @@ def cube_passes(
         The light's settings, ``passes="auto"``.
     casters : list of ActorState
         The casters its cube draws.
+    snapshot : Snapshot
+        This frame's actors, ``casters`` among them (their triangle counts).
     notes : list of str
         The light's notes; the choice of six passes is explained there.
 
@@ -40,10 +42,11 @@ def cube_passes(
     --------
     >>> from pvshadows.model.settings import ShadowSettings
     >>> from pvshadows.pipeline.cube_passes import cube_passes
-    >>> cube_passes(ShadowSettings(), [], []).passes
+    >>> from pvshadows.scene.snapshot import Snapshot
+    >>> cube_passes(ShadowSettings(), [], Snapshot([], []), []).passes
     'single'
     """
-    triangles = sum(c.triangles.n_triangles for c in casters)
+    triangles = int(snapshot.caster_triangles[snapshot.caster_rows(casters)].sum())
     if triangles < SIX_PASSES_FROM:
         return replace(settings, passes="single")
     notes.append(

@@ -194,7 +194,7 @@ class RendererShadows:
         casts = [plan.cast for plan in plans if plan.cast is not None]
         for technique in self._techniques.values():
             technique.keep_only(casts)
-        if snapshot is not self.snapshot:
+        if snapshot is not self.snapshot and snapshot.parent is None:
             self._buffers.keep_only(snapshot.actors)
         self._where = "receiver shader edits"
         assert self._block is not None  # made by _start_gl

@@ -17,6 +17,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import fields, replace
 from functools import cached_property
+from itertools import compress
 from typing import Any
 
 import numpy as np
@@ -47,7 +48,6 @@ from pvshadows.scene.lights import (
 )
 from pvshadows.scene.planes import PlaneChoice, choose_plane, sole_plane
 from pvshadows.scene.snapshot import ActorState, Snapshot
-from pvshadows.scene.triangles import vtk_id
 from pvshadows.scene.view import FrameView
 
 #: A point light's casters within a cone of this half angle (degrees) get a map of that cone.
@@ -333,8 +333,9 @@ def _plan_light(
         plan.notes.append(f"casts nothing: {error}")
         return plan, None
     technique, why = _technique_for(plan.kind, settings, shared.only_a_plane)
-    key, casters = vtk_id(light), snapshot.casters
-    use: ViewUse = reach.reaches(key, pose, snapshot.receivers, snapshot.receiver_bounds)
+    casters = snapshot.casters
+    reached = reach.reaches(plan.key, pose, snapshot)
+    use: ViewUse = reached[snapshot.receiver_index]
     if not np.any(shared.in_view & use):
         plan.notes.append(
             "no receiver the camera sees is in the light's reach: it casts nothing and "
@@ -343,8 +344,8 @@ def _plan_light(
             else "the camera sees no receiver: the light casts nothing and costs nothing"
         )
         return plan, use
-    hits = reach.reaches(key, pose, casters, snapshot.caster_bounds)
-    within = [c for c, hit in zip(casters, hits.tolist(), strict=True) if hit]
+    hits = reached[snapshot.caster_index]
+    within = casters if hits.all() else list(compress(casters, hits.tolist()))
     if not within:
         plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
         return plan, use
@@ -357,7 +358,7 @@ def _plan_light(
         if _far(seen_from):
             pose, use = _fit_far_spot(pose, seen_from, shared.seen, plan.notes), EVERY_RECEIVER
     if technique == "cubemap" and settings.passes == "auto":
-        settings = cube_passes(settings, within, plan.notes)
+        settings = cube_passes(settings, within, snapshot, plan.notes)
     if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
         plan.notes.append(f"{len(within)} of {len(casters)} casters inside the cone")
     cast = Cast(

@@ -2,10 +2,9 @@
 
 A spot light reaches only the actors whose bounds touch its cone. The answer
 for an actor stays right while neither the light's pose nor the actor's
-state changed (the scene reader keeps an unchanged actor's
-:class:`~pvshadows.scene.snapshot.ActorState` object), so each frame tests only the
-actors that are new or changed, or all of them when the light moved, in one
-vectorised call.
+state changed, so a frame whose snapshot follows the last one
+(:meth:`pvshadows.scene.snapshot.Snapshot.successor`) tests only the actors
+replaced in it, and a moved light tests every actor in one vectorised call.
 """
 
 from __future__ import annotations
@@ -14,11 +13,11 @@ import numpy as np
 
 from pvshadows.scene.culling import boxes_in_spot
 from pvshadows.scene.lights import LightKind, LightPose
-from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.snapshot import Snapshot
 
 
 class ReachCache:
-    """Remembers, per light, which actor states its reach was tested on and the answers.
+    """Remembers, per light, its pose, the snapshot its reach was tested on and the answers.
 
     Examples
     --------
@@ -30,28 +29,22 @@ class ReachCache:
     >>> pl = pv.Plotter(off_screen=True)
     >>> _ = pl.add_mesh(pv.Cube(center=(0, 0, -3)))
     >>> _ = pl.add_mesh(pv.Cube(center=(9, 0, -3)))
-    >>> actors = SceneReader(lambda actor: "an actor").read(pl.renderer).actors
+    >>> snapshot = SceneReader(lambda actor: "an actor").read(pl.renderer)
     >>> spot = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 20.0)
     >>> cache = ReachCache()
-    >>> cache.reaches("spot", spot, actors).tolist(), cache.tests
+    >>> cache.reaches("spot", spot, snapshot).tolist(), cache.tests
     ([True, False], 2)
-    >>> cache.reaches("spot", spot, actors).tolist(), cache.tests
+    >>> cache.reaches("spot", spot, snapshot).tolist(), cache.tests
     ([True, False], 2)
     """
 
     def __init__(self) -> None:
-        self._lights: dict[str, _Answers] = {}
+        self._lights: dict[str, tuple[tuple, Snapshot, np.ndarray]] = {}
         #: Cone tests run since the cache was made (one per actor tested).
         self.tests = 0
 
-    def reaches(
-        self,
-        light: str,
-        pose: LightPose,
-        states: list[ActorState],
-        bounds: np.ndarray | None = None,
-    ) -> np.ndarray:
-        """Return, for each state, whether the light can reach it (conservative).
+    def reaches(self, light: str, pose: LightPose, snapshot: Snapshot) -> np.ndarray:
+        """Return, for each of a snapshot's actors, whether the light can reach it (conservative).
 
         Parameters
         ----------
@@ -59,45 +52,36 @@ class ReachCache:
             The light's key (:func:`pvshadows.scene.triangles.vtk_id`).
         pose : LightPose
             Its pose this frame.
-        states : list of ActorState
-            The actors to answer for.
-        bounds : numpy.ndarray, optional
-            Their world bounds ``(n, 2, 3)`` already stacked (a snapshot
-            keeps them), so a moved light tests them in one call without
-            gathering them again.
+        snapshot : Snapshot
+            This frame's actors.
 
         Returns
         -------
         numpy.ndarray
-            One bool per state; always ``True`` for point and directional
-            lights.
+            One read-only bool per actor of :attr:`Snapshot.actors`; always
+            ``True`` for point and directional lights.
         """
         if pose.kind is not LightKind.SPOT:
-            return np.ones(len(states), dtype=bool)
+            return np.ones(len(snapshot.actors), dtype=bool)
         pose_key = pose.key()
-        answers = self._lights.get(light)
-        if answers is None or answers.pose_key != pose_key:
-            answers = self._lights[light] = _Answers(pose_key)
-        hits = answers.recall(states)
-        if hits is not None:
-            return hits
-        known = answers.known()
-        if not known:
-            untested = list(range(len(states)))
-            hits = np.zeros(len(states), dtype=bool)
-        else:
-            found = [known.get(id(s), (None, False)) for s in states]
-            hits = np.fromiter((hit for _, hit in found), dtype=bool, count=len(states))
-            untested = [i for i, (kept, _) in enumerate(found) if kept is not states[i]]
-        if untested:
-            self.tests += len(untested)
-            if bounds is None:
-                boxes = np.array([states[i].bounds for i in untested]).reshape(-1, 2, 3)
-            else:
-                boxes = bounds if len(untested) == len(states) else bounds[untested]
-            hits[untested] = boxes_in_spot(boxes, pose)
-        hits.setflags(write=False)  # handed out again for the same list
-        answers.keep(states, hits)
+        kept = self._lights.get(light)
+        if kept is not None and kept[0] == pose_key:
+            if kept[1] is snapshot:
+                return kept[2]
+            if snapshot.parent is kept[1]:
+                rows = list(snapshot.replaced)
+                hits = kept[2].copy()
+                hits[rows] = boxes_in_spot(snapshot.actor_bounds[rows], pose)
+                return self._keep(light, pose_key, snapshot, hits, len(rows))
+        hits = boxes_in_spot(snapshot.actor_bounds, pose)
+        return self._keep(light, pose_key, snapshot, hits, len(hits))
+
+    def _keep(
+        self, light: str, pose_key: tuple, snapshot: Snapshot, hits: np.ndarray, tested: int
+    ) -> np.ndarray:
+        self.tests += tested
+        hits.setflags(write=False)  # handed out again while nothing changes
+        self._lights[light] = (pose_key, snapshot, hits)
         return hits
 
     def keep_only(self, lights: set[str]) -> None:
@@ -110,37 +94,3 @@ class ReachCache:
         """
         for key in set(self._lights) - lights:
             del self._lights[key]
-
-
-class _Answers:
-    """One light's answers at one pose: the last few lists of states asked about."""
-
-    #: Lists kept: a light is asked about its receivers and its casters each frame.
-    KEPT = 4
-
-    def __init__(self, pose_key: tuple) -> None:
-        self.pose_key = pose_key
-        self._recent: list[tuple[list[ActorState], np.ndarray]] = []
-        self._known: dict[int, tuple[ActorState, bool]] | None = None
-
-    def recall(self, states: list[ActorState]) -> np.ndarray | None:
-        """Return the answers for this very list of states, if asked before."""
-        for kept, hits in self._recent:
-            if kept is states:
-                return hits
-        return None
-
-    def known(self) -> dict[int, tuple[ActorState, bool]]:
-        """Return every state answered for, by ``id``, with its answer."""
-        if self._known is None:
-            self._known = {
-                id(state): (state, bool(hit))
-                for kept, hits in reversed(self._recent)
-                for state, hit in zip(kept, hits.tolist(), strict=True)
-            }
-        return self._known
-
-    def keep(self, states: list[ActorState], hits: np.ndarray) -> None:
-        """Remember the answers for a list of states."""
-        self._recent = [(states, hits), *self._recent[: self.KEPT - 1]]
-        self._known = None

@@ -68,7 +68,7 @@ def plan_volume(
         With ``on_open="raise"``, naming the first open caster.
     """
     closed, open_casters = split_closed(plan)
-    fallback = _fallback(plan, open_casters, warned)
+    fallback = _fallback(plan, open_casters, snapshot, warned)
     light = off_surfaces(plan.pose.homogeneous(), closed, plan.notes)
     enclosing = enclosing_caster(light, closed)
     while enclosing is not None and holds_the_rest(enclosing, closed, snapshot):
@@ -126,7 +126,7 @@ def choose_volume_zmode(plan: Cast, volume: VolumePlan, renderer: vtk.vtkRendere
 
 
 def _fallback(
-    plan: Cast, open_casters: list[ActorState], warned: set[tuple]
+    plan: Cast, open_casters: list[ActorState], snapshot: Snapshot, warned: set[tuple]
 ) -> tuple[str, Cast] | None:
     """Plan the shadow map that casts a volume light's open casters; warn once per caster."""
     if not open_casters:
@@ -158,5 +158,5 @@ def _fallback(
     assert name is not None
     settings = plan.settings
     if name == "cubemap" and settings.passes == "auto":
-        settings = cube_passes(settings, open_casters, plan.notes)
+        settings = cube_passes(settings, open_casters, snapshot, plan.notes)
     return name, replace(plan, casters=open_casters, technique=name, settings=settings, notes=[])

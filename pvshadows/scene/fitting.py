@@ -12,6 +12,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from itertools import compress, repeat
+from operator import is_not
 
 import numpy as np
 
@@ -128,19 +130,16 @@ def spot_shadowing_casters(
     list of ActorState
         The casters that matter for the fit of the light's map.
     """
-    if all(state.sheet is None for state in casters):
+    keep = ~snapshot.caster_flat[snapshot.caster_rows(casters)]
+    if keep.all():
         return casters
     receivers = snapshot.receivers
-    corners = _sheet_corners(casters, snapshot.receiver_bounds)
-    kept = []
-    for state in casters:
-        if state.sheet is None:
-            kept.append(state)
-            continue
+    corners = box_corners(snapshot.receiver_bounds)
+    for row in np.flatnonzero(~keep).tolist():
+        state = casters[row]
         away = state.bounds.mean(axis=0) - pose.position
-        if not _flat_and_lit_above(state, away, receivers, corners):
-            kept.append(state)
-    return kept
+        keep[row] = not _flat_and_lit_above(state, away, receivers, corners)
+    return list(compress(casters, keep.tolist()))
 
 
 @dataclass(frozen=True)
@@ -246,25 +245,18 @@ def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
 _CLIP_CORNERS = np.array([[x, y, z, 1.0] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
 
 
-def _sheet_corners(casters: list[ActorState], receiver_bounds: np.ndarray) -> np.ndarray:
-    """Return the receivers' box corners ``(n, 8, 3)`` when some caster is flat (else none)."""
-    if all(state.sheet is None for state in casters):
-        return np.zeros((0, 8, 3))
-    return box_corners(receiver_bounds)
-
-
 def _flat_and_lit_above(
     state: ActorState, direction: np.ndarray, receivers: list[ActorState], corners: np.ndarray
 ) -> bool:
     """Whether a caster is a flat sheet with every other receiver on its lit side.
 
-    ``corners`` are the receivers' box corners from :func:`_sheet_corners`,
-    in the order of ``receivers``.
+    ``corners`` are the receivers' box corners ``(n, 8, 3)``, in the order
+    of ``receivers``.
     """
     sheet = state.sheet
     if sheet is None:
         return False
-    others = corners[np.fromiter((r is not state for r in receivers), bool, len(receivers))]
+    others = corners[np.fromiter(map(is_not, receivers, repeat(state)), bool, len(receivers))]
     if sheet.size == 0.0 or others.size == 0:
         return True
     normal = -sheet.normal if sheet.normal @ direction > 0.0 else sheet.normal
@@ -362,10 +354,12 @@ def sun_actors(pose: LightPose, snapshot: Snapshot) -> SunActors | None:
     casters, receivers = snapshot.casters, snapshot.receivers
     if not casters or not receivers:
         return None
-    corners = _sheet_corners(casters, snapshot.receiver_bounds)
-    shadowing = [
-        c for c in casters if not _flat_and_lit_above(c, pose.direction, receivers, corners)
-    ]
+    keep = ~snapshot.caster_flat
+    if not keep.all():
+        corners = box_corners(snapshot.receiver_bounds)
+        for row in np.flatnonzero(~keep).tolist():
+            keep[row] = not _flat_and_lit_above(casters[row], pose.direction, receivers, corners)
+    shadowing = casters if keep.all() else list(compress(casters, keep.tolist()))
     if not shadowing:
         return None
     return SunActors(

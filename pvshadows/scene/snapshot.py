@@ -98,6 +98,17 @@ class ActorState:
         return bool(np.linalg.det(self.matrix[:3, :3]) < 0.0)
 
     @cached_property
+    def cull_side(self) -> str | None:
+        """The side of its triangles a depth pass that culls front faces leaves out.
+
+        ``"front"`` for a closed, outward-wound caster (``"back"`` if its
+        matrix mirrors it), ``None`` when it is open or inward-wound.
+        """
+        if not self.triangles.closed_outward():
+            return None
+        return "back" if self.mirrored else "front"
+
+    @cached_property
     def sheet(self) -> Sheet | None:
         """The plane the actor lies in when it is flat (a ground, a wall), else ``None``.
 
@@ -138,9 +149,19 @@ class Sheet:
     size: float
 
 
+#: Roles of :meth:`Snapshot.patches`: the casters, the receivers, every actor.
+CASTERS, RECEIVERS, ALL_ACTORS = 0, 1, 2
+
+
 @dataclass(eq=False)
 class Snapshot:
     """The actors of a renderer in one frame.
+
+    A snapshot in which only some actors' states changed, their roles kept,
+    follows the last one (:meth:`successor`): what it derives from its
+    actors (role lists, stacked bounds and matrices) is last frame's,
+    copied and patched in the changed rows, so it costs the actors that
+    changed rather than every actor.
 
     Attributes
     ----------
@@ -155,35 +176,187 @@ class Snapshot:
     bystanders: list[vtk.vtkActor]
     #: Keys (:func:`pvshadows.scene.triangles.vtk_id`) of the actors read again for this frame.
     changed: frozenset[str] = field(default_factory=frozenset)
+    #: The snapshot this one follows (:meth:`successor`), else ``None``: read afresh.
+    parent: Snapshot | None = field(default=None, repr=False)
+    #: Rows of :attr:`actors` whose state is new since :attr:`parent`.
+    replaced: tuple[int, ...] = ()
+
+    def successor(self, states: dict[int, ActorState], changed: frozenset[str]) -> Snapshot:
+        """Return the snapshot that follows this one with some actors' states replaced.
+
+        Parameters
+        ----------
+        states : dict of int to ActorState
+            New states by row of :attr:`actors`; each keeps its actor's roles
+            (caster, receiver, plane).
+        changed : frozenset of str
+            Keys of the actors read again.
+
+        Returns
+        -------
+        Snapshot
+            The next snapshot; it derives its arrays from this one's.
+        """
+        actors = list(self.actors)
+        for row, state in states.items():
+            actors[row] = state
+        # Only one generation back is kept: this snapshot no longer needs its own parent.
+        self.parent = None
+        return Snapshot(actors, self.bystanders, changed, self, tuple(sorted(states)))
+
+    def _inherited(self, name: str) -> object | None:
+        """Return what the parent derived as ``name``, if it has (else ``None``)."""
+        parent = self.parent
+        return None if parent is None else parent.__dict__.get(name)
+
+    @cached_property
+    def _role_rows(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each actor's row in :attr:`casters` and in :attr:`receivers` (-1 when not one)."""
+        kept = self._inherited("_role_rows")
+        if kept is not None:
+            return kept  # type: ignore[return-value]  # roles are the parent's
+        casting = np.array([a.caster for a in self.actors], dtype=bool)
+        receiving = np.array([a.receiver for a in self.actors], dtype=bool)
+        return _rows_within(casting), _rows_within(receiving)
+
+    @cached_property
+    def caster_index(self) -> np.ndarray:
+        """Rows of :attr:`actors` that are :attr:`casters`, in order."""
+        return np.flatnonzero(self._role_rows[CASTERS] >= 0)
+
+    @cached_property
+    def receiver_index(self) -> np.ndarray:
+        """Rows of :attr:`actors` that are :attr:`receivers`, in order."""
+        return np.flatnonzero(self._role_rows[RECEIVERS] >= 0)
+
+    def patches(self, role: int) -> list[tuple[int, ActorState]]:
+        """Return the actors of a role replaced since :attr:`parent`.
+
+        Parameters
+        ----------
+        role : int
+            :data:`CASTERS`, :data:`RECEIVERS` or :data:`ALL_ACTORS`.
+
+        Returns
+        -------
+        list of tuple
+            ``(row in the role's list, new state)`` for each.
+        """
+        if role == ALL_ACTORS:
+            return [(r, self.actors[r]) for r in self.replaced]
+        rows = self._role_rows[role]
+        return [(int(rows[r]), self.actors[r]) for r in self.replaced if rows[r] >= 0]
 
     @cached_property
     def casters(self) -> list[ActorState]:
         """Actors that cast shadows."""
-        return [a for a in self.actors if a.caster]
+        return self._role_list("casters", CASTERS, lambda a: a.caster)
 
     @cached_property
     def receivers(self) -> list[ActorState]:
         """Actors that show shadows."""
-        return [a for a in self.actors if a.receiver]
+        return self._role_list("receivers", RECEIVERS, lambda a: a.receiver)
+
+    def _role_list(self, name: str, role: int, member) -> list[ActorState]:
+        kept = self._inherited(name)
+        if kept is None:
+            return [a for a in self.actors if member(a)]
+        states = list(kept)  # type: ignore[call-overload]
+        for row, state in self.patches(role):
+            states[row] = state
+        return states
+
+    @cached_property
+    def caster_sides(self) -> list[str | None]:
+        """:attr:`ActorState.cull_side` of :attr:`casters`."""
+        return self._caster_values("caster_sides", lambda c: c.cull_side)
+
+    @cached_property
+    def caster_keys(self) -> list[tuple]:
+        """:meth:`ActorState.key` of :attr:`casters`."""
+        return self._caster_values("caster_keys", ActorState.key)
+
+    def _caster_values(self, name: str, value) -> list:
+        """List ``value`` of the casters, or patch the parent's list in the changed rows."""
+        kept = self._inherited(name)
+        if kept is None:
+            return [value(c) for c in self.casters]
+        values = list(kept)  # type: ignore[call-overload]
+        for row, state in self.patches(CASTERS):
+            values[row] = value(state)
+        return values
+
+    @cached_property
+    def caster_flat(self) -> np.ndarray:
+        """Whether each of :attr:`casters` is flat (:attr:`ActorState.sheet`), ``(n,)``."""
+        return self._stacked("caster_flat", CASTERS, lambda s: s.sheet is not None, ())
+
+    @cached_property
+    def caster_triangles(self) -> np.ndarray:
+        """Triangle counts of :attr:`casters`, ``(n,)``."""
+        return self._stacked("caster_triangles", CASTERS, lambda s: s.triangles.n_triangles, ())
+
+    def keys_of(self, casters: list[ActorState]) -> tuple:
+        """Return :meth:`ActorState.key` of some of this snapshot's casters, as one tuple.
+
+        Parameters
+        ----------
+        casters : list of ActorState
+            Casters of this snapshot.
+
+        Returns
+        -------
+        tuple
+            Their keys, in order: equal for the same casters in the same shapes.
+        """
+        keys = self.caster_keys
+        if casters is self.casters:
+            return tuple(keys)
+        return tuple(map(keys.__getitem__, self.caster_rows(casters).tolist()))
+
+    @cached_property
+    def actor_bounds(self) -> np.ndarray:
+        """World bounds of :attr:`actors`, ``(n, 2, 3)``."""
+        return self._stacked("actor_bounds", ALL_ACTORS, lambda s: s.bounds, (2, 3))
 
     @cached_property
     def caster_bounds(self) -> np.ndarray:
         """World bounds of :attr:`casters`, ``(n, 2, 3)``."""
-        return _stacked(self.casters)
+        return self._stacked("caster_bounds", CASTERS, lambda s: s.bounds, (2, 3))
 
     @cached_property
     def receiver_bounds(self) -> np.ndarray:
         """World bounds of :attr:`receivers`, ``(n, 2, 3)``."""
-        return _stacked(self.receivers)
+        return self._stacked("receiver_bounds", RECEIVERS, lambda s: s.bounds, (2, 3))
 
     @cached_property
     def caster_models(self) -> np.ndarray:
         """Model matrices of :attr:`casters` (:meth:`ActorState.model_matrix`), ``(n, 4, 4)``."""
-        return np.array([c.model_matrix() for c in self.casters]).reshape(-1, 4, 4)
+        return self._stacked("caster_models", CASTERS, ActorState.model_matrix, (4, 4))
+
+    def _stacked(self, name: str, role: int, value, shape: tuple[int, ...]) -> np.ndarray:
+        """Stack ``value`` of a role's states, or patch the parent's stack in the changed rows."""
+        kept = self._inherited(name)
+        if kept is None:
+            states = (self.casters, self.receivers, self.actors)[role]
+            return np.array([value(s) for s in states]).reshape(-1, *shape)
+        stacked = kept.copy()  # type: ignore[attr-defined]
+        for row, state in self.patches(role):
+            stacked[row] = value(state)
+        return stacked
 
     @cached_property
     def _caster_rows(self) -> dict[int, int]:
-        return {id(state): row for row, state in enumerate(self.casters)}
+        kept = self._inherited("_caster_rows")
+        if kept is None:
+            return {id(state): row for row, state in enumerate(self.casters)}
+        rows = dict(kept)  # type: ignore[call-overload]
+        parent = self.parent
+        assert parent is not None  # kept comes from it
+        for row, state in self.patches(CASTERS):
+            del rows[id(parent.casters[row])]
+            rows[id(state)] = row
+        return rows
 
     def caster_rows(self, casters: list[ActorState]) -> np.ndarray:
         """Return where each of some of this snapshot's casters sits in :attr:`casters`.
@@ -198,8 +371,10 @@ class Snapshot:
         numpy.ndarray
             ``(n,)`` rows of :attr:`caster_bounds` and :attr:`caster_models`.
         """
+        if casters is self.casters:
+            return np.arange(len(casters))
         rows = self._caster_rows
-        return np.fromiter((rows[id(c)] for c in casters), dtype=np.intp, count=len(casters))
+        return np.fromiter(map(rows.__getitem__, map(id, casters)), np.intp, len(casters))
 
     def bounds_of(self, casters: list[ActorState]) -> np.ndarray:
         """Return the world bounds of some of this snapshot's casters, ``(n, 2, 3)``.
@@ -219,8 +394,11 @@ class Snapshot:
         return self.caster_bounds[self.caster_rows(casters)]
 
 
-def _stacked(states: list[ActorState]) -> np.ndarray:
-    return np.array([s.bounds for s in states]).reshape(-1, 2, 3)
+def _rows_within(members: np.ndarray) -> np.ndarray:
+    """Return each item's row among the members (``-1`` for a non-member)."""
+    rows = np.full(len(members), -1, dtype=np.intp)
+    rows[members] = np.arange(int(members.sum()))
+    return rows
 
 
 class SceneReader:
@@ -391,14 +569,19 @@ class SceneReader:
         self, cache: _RendererCache, camera: int, suspects: set[int] | None
     ) -> Snapshot:
         """Read again the actors that changed, among ``suspects`` (indices; ``None``: all)."""
+        renewed: list[tuple[_Entry, _Entry]] = []
         if suspects is None:
             entries, changed = self._compare_all(cache, camera)
         else:
-            entries, changed = self._compare_suspects(cache, camera, suspects)
+            entries, changed = self._compare_suspects(cache, camera, suspects, renewed)
         cache.camera, cache.roles = camera, self.roles
         if not changed and entries.keys() == cache.entries.keys() and cache.snapshot:
             return cache.snapshot
         self.reread += len(changed)
+        following = self._successor(cache, renewed, frozenset(changed)) if renewed else None
+        if following is not None:
+            cache.entries, cache.snapshot = entries, following
+            return following
         ordered = [entries[id(actor)] for actor in cache.actors]
         if suspects is None:
             kept = {e.key for e in ordered}
@@ -408,8 +591,31 @@ class SceneReader:
         actors = [e.state for e in ordered if e.state is not None]
         bystanders = [e.actor for e in ordered if e.bystander]
         cache.entries = entries
+        cache.rows = {id(e.actor): row for row, e in enumerate(e for e in ordered if e.state)}
         cache.snapshot = Snapshot(actors, bystanders, frozenset(changed))
         return cache.snapshot
+
+    @staticmethod
+    def _successor(
+        cache: _RendererCache, renewed: list[tuple[_Entry, _Entry]], changed: frozenset[str]
+    ) -> Snapshot | None:
+        """Return last frame's snapshot with the renewed actors' states replaced.
+
+        ``None`` when some renewed actor changed roles, appeared or left (the
+        snapshot is then built afresh).
+        """
+        if cache.snapshot is None:
+            return None
+        states = {}
+        for old, new in renewed:
+            if old.state is None or new.state is None:
+                if old.state is not new.state or old.bystander != new.bystander:
+                    return None
+                continue
+            if _roles(old.state) != _roles(new.state):
+                return None
+            states[cache.rows[id(new.actor)]] = new.state
+        return cache.snapshot.successor(states, changed)
 
     def _compare_all(
         self, cache: _RendererCache, camera: int
@@ -434,12 +640,17 @@ class SceneReader:
         return entries, changed
 
     def _compare_suspects(
-        self, cache: _RendererCache, camera: int, suspects: set[int]
+        self,
+        cache: _RendererCache,
+        camera: int,
+        suspects: set[int],
+        renewed: list[tuple[_Entry, _Entry]],
     ) -> tuple[dict[int, _Entry], list[str]]:
         """Compare the stamps of the actors VTK modified; read and watch again those that changed.
 
         The actor list is last frame's, so every other entry stays as it is:
-        the work is in the suspects alone.
+        the work is in the suspects alone. Each changed actor's old and new
+        entries are added to ``renewed``.
         """
         entries = dict(cache.entries)
         changed = []
@@ -449,7 +660,8 @@ class SceneReader:
             entry = entries[id(actor)]
             if entry.stamp == self._stamp(entry, camera):
                 continue
-            entry = self._entry(actor, camera)
+            renewed.append((entry, self._entry(actor, camera)))
+            entry = renewed[-1][1]
             changed.append(entry.key)
             cache.watch.watch(index, watched_objects(actor, entry.mapper, entry.data))
             entries[id(actor)] = entry
@@ -509,6 +721,10 @@ class SceneReader:
         return state, not receiver
 
 
+def _roles(state: ActorState) -> tuple[bool, bool, bool]:
+    return state.caster, state.receiver, state.plane
+
+
 @dataclass
 class _Entry:
     """What one actor was at its last change, and the VTK objects whose times say it changed."""
@@ -535,6 +751,8 @@ class _RendererCache:
     props: int = -1
     actors: list[vtk.vtkActor] = field(default_factory=list)
     entries: dict[int, _Entry] = field(default_factory=dict)
+    #: Each shadowed actor's row in the snapshot's actors, by ``id`` of the actor.
+    rows: dict[int, int] = field(default_factory=dict)
     snapshot: Snapshot | None = None
     watch: ModificationWatch = field(default_factory=ModificationWatch)
     camera: int = -1

@@ -163,6 +163,16 @@ class ReceiverEdits:
         # and takes only the uniform values that changed, with the others of its kind:
         # a frame costs the actors that changed, not every receiver.
         lights_kept = shadings == self._shadings and lit_points == self._lit_points
+        previous = self._snapshot
+        if (
+            lights_kept
+            and not flagged
+            and previous is not None
+            and snapshot.parent is previous
+            and snapshot.bystanders is previous.bystanders
+            and self._update_replaced(snapshot, shadings, uniforms)
+        ):
+            return
         fresh: dict[tuple, dict[str, object]] = {}
         touched = set()
         members: dict[tuple, list[vtk.vtkUniforms]] = {}
@@ -203,6 +213,32 @@ class ReceiverEdits:
             self._lights_of.pop(signature, None)
         self._members = members
         self._snapshot, self._shadings, self._lit_points = snapshot, list(shadings), lit_points
+
+    def _update_replaced(
+        self, snapshot: Snapshot, shadings: list[LightShading], uniforms: dict[str, object]
+    ) -> bool:
+        """Bring only the receivers replaced since the last snapshot up to date.
+
+        Every other receiver keeps its edits and takes the changed values by
+        kind. Returns ``False``, before touching that receiver, when one of
+        them would change kind (then the whole frame's path runs).
+        """
+        fresh: dict[tuple, dict[str, object]] = {}
+        for row in snapshot.replaced:
+            state = snapshot.actors[row]
+            if not state.receiver:
+                continue
+            key = state.key()[0]
+            lights = [s.for_actor(key) for s in shadings]
+            pbr = state.actor.GetProperty().GetInterpolation() == vtk.VTK_PBR
+            if self._signature_of.get(key) != (True, *_signature(pbr, lights)):
+                return False
+            self._receive(state.actor, key, state, lights, True, set(), uniforms, fresh)
+        for signature, targets in self._members.items():
+            fresh[signature] = self._send_to(signature, targets, uniforms, fresh.get(signature))
+        self._sent.update(fresh)
+        self._snapshot = snapshot
+        return True
 
     def _receive(
         self,

@@ -197,7 +197,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             settings.passes,
             settings.cull_front,
             state.far,
-            tuple(c.key() for c in opaque),
+            context.snapshot.keys_of(opaque),
         )
         if key == state.key:
             state.planned = plan

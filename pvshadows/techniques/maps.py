@@ -142,8 +142,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         state.planned = None
         inside = plan.casters
         ranged = inside or context.snapshot.casters
-        keys = tuple(c.key() for c in inside)
-        range_key = (pose.key(), settings.resolution, keys or tuple(c.key() for c in ranged))
+        range_key = (pose.key(), settings.resolution, context.snapshot.keys_of(ranged))
         if range_key != state.range_key or state.range_snapshot is not context.snapshot:
             nearest, far = distance_range(pose.position, context.snapshot.bounds_of(ranged))
             shadowing = spot_shadowing_casters(pose, inside, context.snapshot)
@@ -247,7 +246,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         if not opaque:
             state.key = None
             return [PassReport("map depth", "skipped", "every caster is translucent"), *companion]
-        key = (*key, tuple(c.key() for c in opaque))
+        key = (*key, context.snapshot.keys_of(opaque))
         if key == state.key:
             reused = f"light, casters and coverage unchanged since frame {state.frame}"
             return [PassReport("map depth", "reused", reused), *companion]

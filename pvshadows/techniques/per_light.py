@@ -40,27 +40,6 @@ StateT = TypeVar("StateT", bound=LightState)
 PassT = TypeVar("PassT", bound=Releasable)
 
 
-def face_to_cull(caster: ActorState, settings: ShadowSettings) -> str | None:
-    """Return the side of a caster's triangles its shadow map leaves out.
-
-    Parameters
-    ----------
-    caster : ActorState
-        The caster this frame.
-    settings : ShadowSettings
-        The light's settings.
-
-    Returns
-    -------
-    {"front", "back"} or None
-        ``"front"`` with ``cull_front=True`` for a closed, outward-wound
-        caster (``"back"`` if its matrix mirrors it), ``None`` otherwise.
-    """
-    if not settings.cull_front or not caster.triangles.closed_outward():
-        return None
-    return "back" if caster.mirrored else "front"
-
-
 def caster_draws(
     casters: list[ActorState],
     world_to_light: np.ndarray,
@@ -81,19 +60,24 @@ def caster_draws(
     buffers : ActorBuffers
         The casters' triangles on the GPU.
     settings : ShadowSettings
-        The light's settings (the sides to cull).
+        The light's settings: with ``cull_front=True`` each caster's
+        :attr:`~pvshadows.scene.snapshot.ActorState.cull_side` is culled.
 
     Returns
     -------
     CasterDraws
         Their buffers, ``world_to_light @ model_matrix`` and sides to cull.
     """
-    models = snapshot.caster_models[snapshot.caster_rows(casters)]
-    return CasterDraws(
-        buffers.get_all(casters),
-        world_to_light @ models,
-        [face_to_cull(caster, settings) for caster in casters],
-    )
+    every = buffers.of_casters(snapshot)
+    if casters is snapshot.casters:
+        drawn, models = every, snapshot.caster_models
+        sides = snapshot.caster_sides
+    else:
+        rows = snapshot.caster_rows(casters).tolist()
+        drawn, models = list(map(every.__getitem__, rows)), snapshot.caster_models[rows]
+        sides = list(map(snapshot.caster_sides.__getitem__, rows))
+    culls = sides if settings.cull_front else [None] * len(casters)
+    return CasterDraws(drawn, world_to_light @ models, culls)
 
 
 class PerLightMaps(Generic[StateT, PassT]):

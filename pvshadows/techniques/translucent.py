@@ -12,12 +12,15 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from operator import attrgetter
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.transmittance_textures import TransmittanceCube, TransmittanceTexture
 from pvshadows.model.report import PassReport
 from pvshadows.passes.transmittance import PASS_NAME, TransmittancePass
 from pvshadows.scene.snapshot import ActorState
+
+_TRANSMITTANCE = attrgetter("transmittance")
 
 
 def split_casters(casters: list[ActorState]) -> tuple[list[ActorState], list[ActorState]]:
@@ -43,6 +46,8 @@ def split_casters(casters: list[ActorState]) -> tuple[list[ActorState], list[Act
     >>> split_casters([glass, stone, air]) == ([stone], [glass])
     True
     """
+    if not any(map(_TRANSMITTANCE, casters)):
+        return casters, []
     opaque = [c for c in casters if c.transmittance <= 0.0]
     translucent = [c for c in casters if 0.0 < c.transmittance < 1.0]
     return opaque, translucent
