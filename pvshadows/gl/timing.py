@@ -13,6 +13,7 @@ integers, so the raw entry point is called with a ctypes integer.
 from __future__ import annotations
 
 import ctypes
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 
@@ -47,6 +48,8 @@ class PassTimer:
     def measure(self, report: PassReport) -> Iterator[None]:
         """Time the GL work issued inside the block into ``report.ms``.
 
+        The CPU time of issuing it goes to ``report.cpu_ms`` at once.
+
         Parameters
         ----------
         report : PassReport
@@ -60,12 +63,14 @@ class PassTimer:
         if len(self._free) < 2:
             self._free.extend(int(q) for q in np.asarray(gl.glGenQueries(2)).ravel())
         start, end = self._free.pop(), self._free.pop()
+        began = time.thread_time()
         gl.glQueryCounter(start, gl.GL_TIMESTAMP)
         try:
             yield
         finally:
             gl.glQueryCounter(end, gl.GL_TIMESTAMP)
             self._pending.append((start, end, report, self._frame))
+            report.cpu_ms += (time.thread_time() - began) * 1e3
 
     def collect(self, *, wait: bool = False) -> None:
         """Read the queries the GPU has finished into their reports; keep the others.

@@ -24,12 +24,17 @@ class PassReport:
         GPU time of the pass in milliseconds; ``None`` when it did not run,
         and until the GPU has finished it (GPU times are read without
         waiting, usually a frame or two later).
+    cpu_ms : float
+        CPU time, in milliseconds, of this thread while it issued the
+        pass's GL calls (what submitting the pass costs); 0 when it did not
+        run.
     """
 
     name: str
     status: str
     detail: str = ""
     ms: float | None = None
+    cpu_ms: float = 0.0
 
     def __str__(self) -> str:
         time = f"{self.ms:8.3f} ms" if self.ms is not None else "       -   "
@@ -173,6 +178,11 @@ class FrameReport:
     def gpu_ms(self) -> float:
         """Total GPU time of the passes that ran, in milliseconds."""
         return sum(p.ms or 0.0 for light in self.lights for p in light.passes)
+
+    @property
+    def pass_cpu_ms(self) -> float:
+        """Total CPU time of issuing the passes that ran, in milliseconds."""
+        return sum(p.cpu_ms for light in self.lights for p in light.passes)
 
     def __str__(self) -> str:
         lines = [str(light) for light in self.lights] or ["no lights"]

@@ -94,6 +94,9 @@ class OverheadRow:
         Median CPU ms of a frame of the twin without shadows, per motion.
     added_ms : dict
         Median CPU ms pvshadows adds to a frame, per motion.
+    passes_ms : dict
+        Median CPU ms of those spent issuing the frame's passes
+        (:attr:`pvshadows.model.report.FrameReport.pass_cpu_ms`), per motion.
     frames : int
         Frames per median.
     first_plain_s, first_shadowed_s : float
@@ -105,6 +108,7 @@ class OverheadRow:
     scene: OverheadScene
     plain_ms: dict[str, float] = field(default_factory=dict)
     added_ms: dict[str, float] = field(default_factory=dict)
+    passes_ms: dict[str, float] = field(default_factory=dict)
     frames: int = 0
     first_plain_s: float = float("nan")
     first_shadowed_s: float = float("nan")
@@ -241,7 +245,7 @@ def _timed_frame(plotter) -> float:
 
 def measure_frames(
     scene: OverheadScene, frames: int = 100, budget_s: float = 20.0
-) -> tuple[dict[str, float], dict[str, float], int]:
+) -> tuple[dict[str, float], dict[str, float], dict[str, float], int]:
     """Measure, in this process, the CPU ms of frames with and without shadows.
 
     Run it with ``GALLIUM_NOOP=1`` set before the first window is made (as
@@ -262,7 +266,8 @@ def measure_frames(
     Returns
     -------
     tuple
-        Median plain ms per motion, median added ms per motion, frames used.
+        Median plain ms per motion, median added ms per motion, median ms
+        of issuing the passes per motion (part of the added), frames used.
     """
     import pvshadows  # noqa: F401 - registers pl.shadows
 
@@ -273,20 +278,24 @@ def measure_frames(
         plotter.screenshot(return_img=True)
     slowest = max(_timed_frame(plotter) for plotter, _, _ in twins)
     frames = int(max(3, min(frames, budget_s * 1e3 / (2 * len(MOTIONS) * max(slowest, 1e-3)))))
-    plain_ms, added_ms = {}, {}
+    plain_ms, added_ms, passes_ms = {}, {}, {}
     for motion in MOTIONS:
         times: tuple[list[float], list[float]] = ([], [])
+        submitted = []
         for frame in range(frames + 2):
             for (plotter, moved_lights, moved), kept in zip(twins, times, strict=True):
                 _move(plotter, moved_lights, moved, motion, frame)
                 elapsed = _timed_frame(plotter)
                 if frame >= 2:
                     kept.append(elapsed)
+            if frame >= 2:
+                submitted.append(shadowed.shadows.last_frame.pass_cpu_ms)
         plain_ms[motion] = statistics.median(times[0])
         added_ms[motion] = statistics.median(times[1]) - plain_ms[motion]
+        passes_ms[motion] = statistics.median(submitted)
     for plotter, _, _ in twins:
         plotter.close()
-    return plain_ms, added_ms, frames
+    return plain_ms, added_ms, passes_ms, frames
 
 
 def measure_first_frame(scene: OverheadScene) -> tuple[float, float]:
@@ -333,8 +342,8 @@ def _worker(spec: dict) -> dict:
     if spec["mode"] == "first":
         plain, shadowed = measure_first_frame(scene)
         return {"first_plain_s": plain, "first_shadowed_s": shadowed}
-    plain_ms, added_ms, frames = measure_frames(scene, spec["frames"], spec["budget_s"])
-    return {"plain_ms": plain_ms, "added_ms": added_ms, "frames": frames}
+    plain_ms, added_ms, passes_ms, frames = measure_frames(scene, spec["frames"], spec["budget_s"])
+    return {"plain_ms": plain_ms, "added_ms": added_ms, "passes_ms": passes_ms, "frames": frames}
 
 
 def _in_subprocess(spec: dict, noop: bool) -> dict:
@@ -468,7 +477,7 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
     out.mkdir(parents=True, exist_ok=True)
     fields = ["scene", "series", "light", "actors", "lights", "triangles", "frames"]
     fields += [f"plain_{m}_ms" for m in MOTIONS] + [f"added_{m}_ms" for m in MOTIONS]
-    fields += ["first_plain_s", "first_shadowed_s"]
+    fields += [f"passes_{m}_ms" for m in MOTIONS] + ["first_plain_s", "first_shadowed_s"]
     with open(out / "overhead.csv", "w", newline="", encoding="utf-8") as handle:
         writer = csv.DictWriter(handle, fieldnames=fields)
         writer.writeheader()
@@ -476,11 +485,13 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
             record = {"scene": row.scene.label, "frames": row.frames, **asdict(row.scene)}
             record.update({f"plain_{m}_ms": row.plain_ms.get(m) for m in MOTIONS})
             record.update({f"added_{m}_ms": row.added_ms.get(m) for m in MOTIONS})
+            record.update({f"passes_{m}_ms": row.passes_ms.get(m) for m in MOTIONS})
             record.update(first_plain_s=row.first_plain_s, first_shadowed_s=row.first_shadowed_s)
             writer.writerow(record)
     lines = [
         "CPU ms pvshadows adds to a frame (Mesa `GALLIUM_NOOP=1`, median of interleaved frames "
-        "against the same scene without shadows), and the first frame after `enable()` "
+        "against the same scene without shadows; in brackets, the median ms of it spent "
+        "issuing the passes that ran), and the first frame after `enable()` "
         "(llvmpipe, wall seconds):",
         "",
         "| overhead scene | plain frame ms | static | camera moving | light moving | actor moving "
@@ -489,7 +500,7 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
     ]
     lines += [
         f"| {row.scene.label} | {row.plain_ms['static']:.2f} "
-        + "".join(f"| {row.added_ms[m]:+.2f} " for m in MOTIONS)
+        + "".join(f"| {_added(row, m)} " for m in MOTIONS)
         + f"| {row.first_shadowed_s:.2f} ({row.first_plain_s:.2f}) | {row.frames} |"
         for row in rows
     ]
@@ -503,6 +514,13 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
     text = "\n".join(lines) + "\n"
     (out / "overhead.md").write_text(text, encoding="utf-8")
     return text
+
+
+def _added(row: OverheadRow, motion: str) -> str:
+    """Return a table cell: the added ms, and the passes' part of it when some ran."""
+    added = f"{row.added_ms[motion]:+.2f}"
+    passes = row.passes_ms.get(motion, 0.0)
+    return f"{added} ({passes:.2f})" if passes >= 0.005 else added
 
 
 if __name__ == "__main__":
