@@ -12,8 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from itertools import compress, repeat
-from operator import is_not
+from itertools import compress
 
 import numpy as np
 
@@ -133,12 +132,10 @@ def spot_shadowing_casters(
     keep = ~snapshot.caster_flat[snapshot.caster_rows(casters)]
     if keep.all():
         return casters
-    receivers = snapshot.receivers
-    corners = box_corners(snapshot.receiver_bounds)
     for row in np.flatnonzero(~keep).tolist():
         state = casters[row]
         away = state.bounds.mean(axis=0) - pose.position
-        keep[row] = not _flat_and_lit_above(state, away, receivers, corners)
+        keep[row] = not _flat_and_lit_above(state, away, snapshot)
     return list(compress(casters, keep.tolist()))
 
 
@@ -245,22 +242,22 @@ def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
 _CLIP_CORNERS = np.array([[x, y, z, 1.0] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
 
 
-def _flat_and_lit_above(
-    state: ActorState, direction: np.ndarray, receivers: list[ActorState], corners: np.ndarray
-) -> bool:
+def _flat_and_lit_above(state: ActorState, direction: np.ndarray, snapshot: Snapshot) -> bool:
     """Whether a caster is a flat sheet with every other receiver on its lit side.
 
-    ``corners`` are the receivers' box corners ``(n, 8, 3)``, in the order
-    of ``receivers``.
+    ``direction`` points from the light along its rays at the caster.
     """
     sheet = state.sheet
     if sheet is None:
         return False
-    others = corners[np.fromiter(map(is_not, receivers, repeat(state)), bool, len(receivers))]
-    if sheet.size == 0.0 or others.size == 0:
+    low, high = snapshot.sheet_span(state)
+    if sheet.size == 0.0 or low > high:
         return True
-    normal = -sheet.normal if sheet.normal @ direction > 0.0 else sheet.normal
-    return bool(np.all((others - sheet.anchor) @ normal >= -1e-6 * sheet.size))
+    tolerance = 1e-6 * sheet.size
+    # The lit side is the one the light is on: against the rays.
+    if float(sheet.normal @ direction) > 0.0:
+        return high <= tolerance
+    return low >= -tolerance
 
 
 def sun_rotation(pose: LightPose) -> np.ndarray:
@@ -356,9 +353,8 @@ def sun_actors(pose: LightPose, snapshot: Snapshot) -> SunActors | None:
         return None
     keep = ~snapshot.caster_flat
     if not keep.all():
-        corners = box_corners(snapshot.receiver_bounds)
         for row in np.flatnonzero(~keep).tolist():
-            keep[row] = not _flat_and_lit_above(casters[row], pose.direction, receivers, corners)
+            keep[row] = not _flat_and_lit_above(casters[row], pose.direction, snapshot)
     shadowing = casters if keep.all() else list(compress(casters, keep.tolist()))
     if not shadowing:
         return None

@@ -14,14 +14,18 @@ derived from it can be kept too.
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass, field
 from functools import cached_property
+from itertools import repeat
+from operator import is_not
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
+from pvshadows.scene.culling import box_corners
 from pvshadows.scene.translucency import transmittance
 from pvshadows.scene.triangles import (
     ActorTriangles,
@@ -296,6 +300,44 @@ class Snapshot:
         """Triangle counts of :attr:`casters`, ``(n,)``."""
         return self._stacked("caster_triangles", CASTERS, lambda s: s.triangles.n_triangles, ())
 
+    def sheet_span(self, state: ActorState) -> tuple[float, float]:
+        """Return how far the other receivers reach on either side of a flat actor's plane.
+
+        Found once per snapshot and flat actor, and shared by every light
+        that asks whether the actor shadows anything.
+
+        Parameters
+        ----------
+        state : ActorState
+            An actor of this snapshot with a :attr:`ActorState.sheet`.
+
+        Returns
+        -------
+        tuple of float
+            The least and greatest signed distance along the sheet's normal
+            of the corners of every other receiver's bounds;
+            ``(inf, -inf)`` when there is no other receiver.
+        """
+        span = self._sheet_spans.get(id(state))
+        if span is None:
+            sheet = state.sheet
+            assert sheet is not None  # asked of flat actors only
+            receivers = self.receivers
+            others = np.fromiter(map(is_not, receivers, repeat(state)), bool, len(receivers))
+            corners = self._receiver_corners[others].reshape(-1, 3)
+            heights = (corners - sheet.anchor) @ sheet.normal
+            span = (float(heights.min()), float(heights.max())) if len(heights) else _NO_SPAN
+            self._sheet_spans[id(state)] = span
+        return span
+
+    @cached_property
+    def _sheet_spans(self) -> dict[int, tuple[float, float]]:
+        return {}
+
+    @cached_property
+    def _receiver_corners(self) -> np.ndarray:
+        return box_corners(self.receiver_bounds)
+
     def keys_of(self, casters: list[ActorState]) -> tuple:
         """Return :meth:`ActorState.key` of some of this snapshot's casters, as one tuple.
 
@@ -392,6 +434,9 @@ class Snapshot:
         if casters is self.casters:
             return self.caster_bounds
         return self.caster_bounds[self.caster_rows(casters)]
+
+
+_NO_SPAN = (math.inf, -math.inf)
 
 
 def _rows_within(members: np.ndarray) -> np.ndarray:
