@@ -330,6 +330,53 @@ def test_an_actor_that_changes_role_gives_a_fresh_snapshot():
     sphere = shadows.snapshot.casters[5].actor
     sphere.prop.lighting = False  # no longer a receiver
     draw(pl)
+    assert pl.shadows.last_frame.failure is None
     assert shadows.snapshot.parent is None
     assert sphere not in [s.actor for s in shadows.snapshot.receivers]
     assert sphere in [s.actor for s in shadows.snapshot.casters]
+
+
+def _two_pools():
+    """Two spot lights over two far-apart boxes on one ground, each light over one box."""
+    from pvshadows.tools.scenes import spot_light
+
+    pl = pv.Plotter(off_screen=True, window_size=(320, 240), lighting="none")
+    pl.add_mesh(pv.Plane(i_size=40, j_size=12), color="white")
+    left = pl.add_mesh(pv.Cube(center=(-12, 0, 1)), color="tan")
+    right = pl.add_mesh(pv.Cube(center=(12, 0, 1)), color="tan")
+    lights = [spot_light((x, 0, 8), (x, 0, 0), 25, 0.5) for x in (-12.0, 12.0)]
+    for light in lights:
+        pl.add_light(light)
+    pl.camera_position = [(0, -30, 25), (0, 0, 0), (0, 0, 1)]
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    return pl, lights, left, right
+
+
+def test_an_actor_moving_outside_a_lights_reach_keeps_that_lights_plan():
+    pl, lights, left, _ = _two_pools()
+    shadows = pl.shadows._renderers[0]
+    kept, planned = shadows.plans[1], shadows.memo.planned
+    before = counters(pl)
+    left.AddPosition(0.3, 0.0, 0.0)
+    draw(pl)
+    counted = change(before, counters(pl))
+    assert counted["cone tests"] == 2  # the moved box, once per light
+    assert shadows.memo.planned - planned == 1
+    assert shadows.plans[1] is kept  # the right light reaches neither where it was nor is
+    assert pl.shadows.last_frame.passes_run == 1
+    for light in lights:
+        assert pl.shadows.measure(light).misclassified <= 0.002
+
+
+def test_an_actor_moving_into_a_lights_reach_plans_that_light_again():
+    pl, lights, left, _ = _two_pools()
+    shadows = pl.shadows._renderers[0]
+    kept = shadows.plans[1]
+    left.SetPosition(22.0, 0.0, 0.0)  # from under the left light to under the right one
+    draw(pl)
+    assert shadows.plans[1] is not kept
+    assert len(shadows.plans[1].cast.casters) == 3  # the ground and both boxes
+    assert pl.shadows.last_frame.passes_run == 2
+    for light in lights:
+        assert pl.shadows.measure(light).misclassified <= 0.002

@@ -130,22 +130,33 @@ class PlanMemo:
             self._in_view = kept
         return kept[2]
 
-    def recall(self, inputs: tuple, in_view: np.ndarray) -> LightPlan | None:
+    def recall(
+        self, inputs: tuple, in_view: np.ndarray, reach: ReachCache | None = None
+    ) -> LightPlan | None:
         """Return a light's last plan if it was made from the same inputs, else ``None``.
 
         ``inputs`` are ``(light, pose time, settings, index, VTK index,
         snapshot)``; ``in_view`` says which of the snapshot's receivers the
-        camera sees, compared as far as the plan looked at it. The plan
-        comes back with the planner's notes only: what techniques and the
-        frame added to them last frame is said again this frame.
+        camera sees, compared as far as the plan looked at it. A snapshot
+        that follows the plan's (:attr:`Snapshot.parent`) counts as the same
+        when the actors replaced in it only moved, the light reaches none of
+        them before or after (``reach`` tells), and the plan did not look at
+        exactly which receivers the camera sees nor choose a receiving
+        plane. The plan comes back with the planner's notes only: what
+        techniques and the frame added to them last frame is said again
+        this frame.
         """
         kept = self._plans.get(id(inputs[0]))
-        if (
-            kept is None
-            or not _same_inputs(kept[0], inputs)
-            or _view_key(kept[3], in_view) != kept[4]
-        ):
+        if kept is None:
             return None
+        same = _same_inputs(kept[0], inputs)
+        if not same and (reach is None or not _moved_out_of_reach(kept, inputs, reach)):
+            return None
+        if _view_key(kept[3], in_view) != kept[4]:
+            return None
+        if not same:
+            kept = (inputs, *kept[1:])
+            self._plans[id(inputs[0])] = kept
         plan, planned = kept[1], kept[2]
         del plan.notes[planned:]
         return plan
@@ -159,6 +170,25 @@ class PlanMemo:
         alive = {id(plan.light) for plan in plans}
         for key in set(self._plans) - alive:
             del self._plans[key]
+
+
+def _moved_out_of_reach(kept: tuple, inputs: tuple, reach: ReachCache) -> bool:
+    """Whether only actors out of the light's reach moved since its kept plan was made."""
+    (light, time, settings, index, vtk_index, before), plan, use = kept[0], kept[1], kept[3]
+    now = inputs[5]
+    if (
+        now.parent is not before
+        or not _same_inputs((light, time, settings, index, vtk_index, now), inputs)
+        or isinstance(use, str)
+        or plan.technique == "planar"
+        or any(now.actors[r].triangles is not before.actors[r].triangles for r in now.replaced)
+    ):
+        return False
+    try:
+        pose = light_pose(light)
+    except ValueError:
+        return False
+    return not reach.touches(plan.key, pose, now)
 
 
 def _same_inputs(a: tuple, b: tuple) -> bool:
@@ -250,7 +280,7 @@ def plan_frame(
     planned = 0
     for index, light in enumerate(lights):
         inputs = (light, pose_time(light), settings_for(light), index, vtk_index, snapshot)
-        plan = memo.recall(inputs, in_view) if memo is not None else None
+        plan = memo.recall(inputs, in_view, reach) if memo is not None else None
         if plan is None:
             plan, use = _plan_light(renderer, shared, inputs, reach, warned, gpu)
             planned += 1

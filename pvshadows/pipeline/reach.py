@@ -76,6 +76,37 @@ class ReachCache:
         hits = boxes_in_spot(snapshot.actor_bounds, pose)
         return self._keep(light, pose_key, snapshot, hits, len(hits))
 
+    def touches(self, light: str, pose: LightPose, snapshot: Snapshot) -> bool:
+        """Whether the light reaches some actor replaced since the snapshot's parent.
+
+        Reached before the change or after it, either counts. Brings the
+        light's answers up to this snapshot as :meth:`reaches` does.
+
+        Parameters
+        ----------
+        light : str
+            The light's key.
+        pose : LightPose
+            Its pose this frame.
+        snapshot : Snapshot
+            This frame's actors, following (:attr:`Snapshot.parent`) the
+            last snapshot planned.
+
+        Returns
+        -------
+        bool
+            ``True`` also when the light reaches every actor (point and
+            directional lights) and some actor changed, or when last
+            frame's answers are not at hand.
+        """
+        rows = list(snapshot.replaced)
+        if pose.kind is not LightKind.SPOT:
+            return bool(rows)
+        kept = self._lights.get(light)
+        known = kept is not None and kept[0] == pose.key() and kept[1] is snapshot.parent
+        before = kept[2][rows].any() if kept is not None and known else True
+        return bool(before or self.reaches(light, pose, snapshot)[rows].any())
+
     def _keep(
         self, light: str, pose_key: tuple, snapshot: Snapshot, hits: np.ndarray, tested: int
     ) -> np.ndarray:
