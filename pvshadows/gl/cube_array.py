@@ -195,12 +195,19 @@ class CubeArray:
         gl = self._gl
         self._window.GetState().vtkglBindFramebuffer(gl.GL_FRAMEBUFFER, self._framebuffer)
         size = (self.resolution, self.resolution)
+        if face is None and self.capacity == 1:
+            # the whole array is this slot's six faces: one layered clear
+            gl.glFramebufferTexture(gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self._handle, 0)
+            finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
+            gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
+            return
         faces = range(6) if face is None else (face,)
-        for each in faces:
+        for order, each in enumerate(faces):
             gl.glFramebufferTextureLayer(
                 gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self._handle, 0, 6 * slot + each
             )
-            finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
+            if order == 0:  # one layer complete means every layer of the array is
+                finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
             gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
         if face is None:
             gl.glFramebufferTexture(gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self._handle, 0)
