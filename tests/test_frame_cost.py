@@ -380,3 +380,29 @@ def test_an_actor_moving_into_a_lights_reach_plans_that_light_again():
     assert pl.shadows.last_frame.passes_run == 2
     for light in lights:
         assert pl.shadows.measure(light).misclassified <= 0.002
+
+
+def test_a_caster_is_tested_for_closure_only_when_a_light_culls_front_faces(monkeypatch):
+    import pvshadows.scene.triangles as triangles
+
+    tested = []
+    closed = triangles.is_closed_outward
+
+    def counted(points, faces):
+        tested.append(len(faces))
+        return closed(points, faces)
+
+    monkeypatch.setattr(triangles, "is_closed_outward", counted)
+    scene = standard_scene()
+    pl = scene.plotter
+    pl.shadows.enable(technique="cubemap", filter="hard")
+    draw(pl)
+    assert tested == []  # a pass over every caster's triangles that nothing would read
+    pl.shadows.configure(scene.light, cull_front=True)
+    draw(pl)
+    # each caster once: ground, box, sphere, cylinder
+    assert sorted(tested) == sorted(
+        pl.shadows._reader.triangles_of(a).n_triangles
+        for a in (scene.ground, scene.box, scene.sphere, scene.cylinder)
+    )
+    assert pl.shadows.measure(scene.light).misclassified <= 0.002

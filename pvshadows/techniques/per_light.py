@@ -69,14 +69,19 @@ def caster_draws(
         Their buffers, ``world_to_light @ model_matrix`` and sides to cull.
     """
     every = buffers.of_casters(snapshot)
-    if casters is snapshot.casters:
+    everyone = casters is snapshot.casters
+    rows = [] if everyone else snapshot.caster_rows(casters).tolist()
+    if everyone:
         drawn, models = every, snapshot.caster_models
-        sides = snapshot.caster_sides
     else:
-        rows = snapshot.caster_rows(casters).tolist()
         drawn, models = list(map(every.__getitem__, rows)), snapshot.caster_models[rows]
-        sides = list(map(snapshot.caster_sides.__getitem__, rows))
-    culls = sides if settings.cull_front else [None] * len(casters)
+    # whether a caster is closed is found only when asked: a pass over its triangles
+    if not settings.cull_front:
+        culls: list[str | None] = [None] * len(casters)
+    elif everyone:
+        culls = snapshot.caster_sides
+    else:
+        culls = list(map(snapshot.caster_sides.__getitem__, rows))
     return CasterDraws(drawn, world_to_light @ models, culls)
 
 
