@@ -5,8 +5,9 @@ frame costs only its CPU work: what remains for a user whose GPU is fast.
 Each scene is built twice, once with shadows and once without (the twin);
 frames of the two alternate, each moved the same way (nothing, the camera,
 the first light, or one caster), and the CPU time of the thread drawing them
-(``time.thread_time()``) is kept. The overhead is the difference of the two
-medians. The first frame after ``enable()`` is timed separately on the real
+(``time.thread_time()``) is kept. The overhead is the median of the
+differences between the two frames of each turn, every motion measured in
+rounds spread over the run. The first frame after ``enable()`` is timed separately on the real
 driver (llvmpipe), wall clock, against the twin's first frame, with Mesa's
 shader cache off (every shader compiled, as on a user's first run).
 
@@ -31,6 +32,8 @@ import numpy as np
 
 #: What changes between two frames of a measurement.
 MOTIONS = ("static", "camera", "light", "actor")
+#: Stretches of a run each motion is measured in, in turn with the others.
+ROUNDS = 4
 #: Window of every overhead scene (the no-op driver draws no pixel, so size barely matters).
 WINDOW = (400, 300)
 
@@ -249,7 +252,11 @@ def measure_frames(
     """Measure, in this process, the CPU ms of frames with and without shadows.
 
     Run it with ``GALLIUM_NOOP=1`` set before the first window is made (as
-    :func:`run_overhead` does), or the times include drawing.
+    :func:`run_overhead` does), or the times include drawing. The two
+    plotters draw in turn, and each motion is measured in
+    ``ROUNDS`` rounds spread over the run, so that a stretch of a slow
+    machine weighs on every motion alike; the added time is the median of
+    the differences between the twins' frames drawn one after the other.
 
     Parameters
     ----------
@@ -278,24 +285,27 @@ def measure_frames(
         plotter.screenshot(return_img=True)
     slowest = max(_timed_frame(plotter) for plotter, _, _ in twins)
     frames = int(max(3, min(frames, budget_s * 1e3 / (2 * len(MOTIONS) * max(slowest, 1e-3)))))
-    plain_ms, added_ms, passes_ms = {}, {}, {}
-    for motion in MOTIONS:
-        times: tuple[list[float], list[float]] = ([], [])
-        submitted = []
-        for frame in range(frames + 2):
-            for (plotter, moved_lights, moved), kept in zip(twins, times, strict=True):
-                _move(plotter, moved_lights, moved, motion, frame)
-                elapsed = _timed_frame(plotter)
-                if frame >= 2:
-                    kept.append(elapsed)
-            if frame >= 2:
-                submitted.append(shadowed.shadows.last_frame.pass_cpu_ms)
-        plain_ms[motion] = statistics.median(times[0])
-        added_ms[motion] = statistics.median(times[1]) - plain_ms[motion]
-        passes_ms[motion] = statistics.median(submitted)
+    plain: dict[str, list[float]] = {motion: [] for motion in MOTIONS}
+    added: dict[str, list[float]] = {motion: [] for motion in MOTIONS}
+    submitted: dict[str, list[float]] = {motion: [] for motion in MOTIONS}
+    per_round = max(1, -(-frames // ROUNDS))
+    for _ in range(ROUNDS):
+        for motion in MOTIONS:
+            for frame in range(per_round + 2):
+                pair = []
+                for plotter, moved_lights, moved in twins:
+                    _move(plotter, moved_lights, moved, motion, frame)
+                    pair.append(_timed_frame(plotter))
+                if frame >= 2:  # the first two settle what the last motion left
+                    plain[motion].append(pair[0])
+                    added[motion].append(pair[1] - pair[0])
+                    submitted[motion].append(shadowed.shadows.last_frame.pass_cpu_ms)
+    plain_ms = {motion: statistics.median(plain[motion]) for motion in MOTIONS}
+    added_ms = {motion: statistics.median(added[motion]) for motion in MOTIONS}
+    passes_ms = {motion: statistics.median(submitted[motion]) for motion in MOTIONS}
     for plotter, _, _ in twins:
         plotter.close()
-    return plain_ms, added_ms, passes_ms, frames
+    return plain_ms, added_ms, passes_ms, per_round * ROUNDS
 
 
 def measure_first_frame(scene: OverheadScene) -> tuple[float, float]:
@@ -489,9 +499,9 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
             record.update(first_plain_s=row.first_plain_s, first_shadowed_s=row.first_shadowed_s)
             writer.writerow(record)
     lines = [
-        "CPU ms pvshadows adds to a frame (Mesa `GALLIUM_NOOP=1`, median of interleaved frames "
-        "against the same scene without shadows; in brackets, the median ms of it spent "
-        "issuing the passes that ran), and the first frame after `enable()` "
+        "CPU ms pvshadows adds to a frame (Mesa `GALLIUM_NOOP=1`, median difference of "
+        "interleaved frames against the same scene without shadows; in brackets, the median "
+        "ms of it spent issuing the passes that ran), and the first frame after `enable()` "
         "(llvmpipe, wall seconds):",
         "",
         "| overhead scene | plain frame ms | static | camera moving | light moving | actor moving "
