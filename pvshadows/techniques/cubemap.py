@@ -34,7 +34,7 @@ from pvshadows.scene.lights import LightKind
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
-from pvshadows.techniques.per_light import PerLightMaps, caster_draws
+from pvshadows.techniques.per_light import LightState, PerLightMaps, caster_draws
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -49,7 +49,7 @@ AT_ONCE = 1 << 30
 
 
 @dataclass
-class CubeState:
+class CubeState(LightState):
     """The depth cube kept for one light between frames."""
 
     cube: DepthCube | CubeSlot
@@ -63,16 +63,9 @@ class CubeState:
     #: (nothing but the camera moved) finds the cube still right.
     planned: Cast | None = None
 
-    def release(self) -> None:
-        """Release the cube and its companion."""
+    def release_map(self) -> None:
+        """Release the cube."""
         self.cube.release()
-        self.drop_companion()
-
-    def drop_companion(self) -> None:
-        """Release the transmittance companion, if any."""
-        if self.companion is not None:
-            self.companion.release()
-            self.companion = None
 
 
 def distance_range(position: np.ndarray, boxes: np.ndarray) -> tuple[float, float]:

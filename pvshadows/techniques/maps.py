@@ -36,7 +36,7 @@ from pvshadows.scene.lights import LightKind
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
-from pvshadows.techniques.per_light import PerLightMaps, caster_draws
+from pvshadows.techniques.per_light import LightState, PerLightMaps, caster_draws
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -46,7 +46,7 @@ from pvshadows.techniques.translucent import (
 
 
 @dataclass
-class MapState:
+class MapState(LightState):
     """The map kept for one light between frames, and the light space it was drawn in."""
 
     depth: DepthMap
@@ -72,16 +72,9 @@ class MapState:
     planned: Cast | None = None
     planned_fit: SunFit | None = None
 
-    def release(self) -> None:
-        """Release the map and its companion."""
+    def release_map(self) -> None:
+        """Release the map."""
         self.depth.release()
-        self.drop_companion()
-
-    def drop_companion(self) -> None:
-        """Release the transmittance companion, if any."""
-        if self.companion is not None:
-            self.companion.release()
-            self.companion = None
 
 
 def _kind(plan: Cast) -> str:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from typing import ClassVar, Generic, Protocol, TypeVar
 
 import numpy as np
@@ -19,14 +20,30 @@ from pvshadows.techniques.filtering import FilterBindings, lookup_shading
 from pvshadows.techniques.translucent import Companion
 
 
-class LightState(Protocol):
-    """What a technique keeps for one light between frames."""
+class LightState(ABC):
+    """What a technique keeps for one light between frames: its map and the map's companion.
+
+    A subclass (a dataclass) holds ``companion`` as a field, default ``None``,
+    and says in :meth:`release_map` how its map is released.
+    """
 
     #: The transmittance companion of its map, when some of its casters are translucent.
     companion: Companion | None
 
+    @abstractmethod
+    def release_map(self) -> None:
+        """Release the light's map."""
+
     def release(self) -> None:
-        """Release the light's GPU resources."""
+        """Release the map and its companion."""
+        self.release_map()
+        self.drop_companion()
+
+    def drop_companion(self) -> None:
+        """Release the transmittance companion, if any."""
+        if self.companion is not None:
+            self.companion.release()
+            self.companion = None
 
 
 class Releasable(Protocol):
