@@ -195,13 +195,9 @@ class CubeArray:
         gl = self._gl
         self._window.GetState().vtkglBindFramebuffer(gl.GL_FRAMEBUFFER, self._framebuffer)
         size = (self.resolution, self.resolution)
-        if face is None and self.capacity == 1:
-            # the whole array is this slot's six faces: one layered clear
-            gl.glFramebufferTexture(gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self._handle, 0)
-            finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
-            gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
-            return
-        faces = range(6) if face is None else (face,)
+        # an array holding this slot only is cleared whole through the layered attachment
+        alone = face is None and self.capacity == 1
+        faces = () if alone else range(6) if face is None else (face,)
         for order, each in enumerate(faces):
             gl.glFramebufferTextureLayer(
                 gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self._handle, 0, 6 * slot + each
@@ -212,6 +208,8 @@ class CubeArray:
         if face is None:
             gl.glFramebufferTexture(gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self._handle, 0)
             finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
+            if alone:
+                gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
 
     def read_faces(self, slot: int) -> np.ndarray:
         """Return one slot's six faces as float32 ``(6, res, res)`` (for tests and debugging).

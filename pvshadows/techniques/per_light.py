@@ -86,19 +86,13 @@ def caster_draws(
         Their buffers, ``world_to_light @ model_matrix`` and sides to cull.
     """
     every = buffers.of_casters(snapshot)
-    everyone = casters is snapshot.casters
-    rows = [] if everyone else snapshot.caster_rows(casters).tolist()
-    if everyone:
-        drawn, models = every, snapshot.caster_models
-    else:
-        drawn, models = list(map(every.__getitem__, rows)), snapshot.caster_models[rows]
-    # whether a caster is closed is found only when asked: a pass over its triangles
-    if not settings.cull_front:
-        culls: list[str | None] = [None] * len(casters)
-    elif everyone:
-        culls = snapshot.caster_sides
-    else:
-        culls = list(map(snapshot.caster_sides.__getitem__, rows))
+    rows = None if casters is snapshot.casters else snapshot.caster_rows(casters).tolist()
+    drawn = every if rows is None else [every[row] for row in rows]
+    models = snapshot.caster_models if rows is None else snapshot.caster_models[rows]
+    culls: list[str | None] = [None] * len(casters)
+    if settings.cull_front:  # only then: finding whether a caster is closed reads its triangles
+        sides = snapshot.caster_sides
+        culls = sides if rows is None else [sides[row] for row in rows]
     return CasterDraws(drawn, world_to_light @ models, culls)
 
 

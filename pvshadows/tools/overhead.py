@@ -7,9 +7,10 @@ frames of the two alternate, each moved the same way (nothing, the camera,
 the first light, or one caster), and the CPU time of the thread drawing them
 (``time.thread_time()``) is kept. The overhead is the median of the
 differences between the two frames of each turn, every motion measured in
-rounds spread over the run. The first frame after ``enable()`` is timed separately on the real
-driver (llvmpipe), wall clock, against the twin's first frame, with Mesa's
-shader cache off (every shader compiled, as on a user's first run).
+rounds spread over the run. The first frame after ``enable()`` is timed
+separately on the real driver (llvmpipe), wall clock, against the twin's
+first frame, with Mesa's shader cache off (every shader compiled, as on a
+user's first run).
 
 Every scene runs in its own subprocess, so no scene's caches, memory or
 driver warm-up reach another's.
@@ -19,6 +20,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import os
 import statistics
 import subprocess
@@ -288,7 +290,7 @@ def measure_frames(
     plain: dict[str, list[float]] = {motion: [] for motion in MOTIONS}
     added: dict[str, list[float]] = {motion: [] for motion in MOTIONS}
     submitted: dict[str, list[float]] = {motion: [] for motion in MOTIONS}
-    per_round = max(1, -(-frames // ROUNDS))
+    per_round = math.ceil(frames / ROUNDS)
     for _ in range(ROUNDS):
         for motion in MOTIONS:
             for frame in range(per_round + 2):
