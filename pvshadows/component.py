@@ -22,7 +22,7 @@ from pvshadows.scene.light_kit import casts_by_default
 from pvshadows.scene.lights import light_kind, light_pose
 from pvshadows.scene.naming import ActorNames
 from pvshadows.scene.planes import require_plane
-from pvshadows.scene.snapshot import SceneReader
+from pvshadows.scene.snapshot import SceneReader, hides_what_is_behind
 from pvshadows.scene.triangles import vtk_id, world_points
 from pvshadows.verify.measure import Measurement, compare
 from pvshadows.verify.probe import read_visibility, require_drawn
@@ -723,12 +723,14 @@ class ShadowsComponent:
         matrix = camera.GetCompositeProjectionTransformMatrix(ren.GetTiledAspectRatio(), -1, 1)
         view = ViewSpec(pv.array_from_vtkmatrix(matrix), int(width), int(height))
         pose = light_pose(light)
+        faces_seen = tuple(hides_what_is_behind(a, ren) for a in snapshot.actors)
         key = (
             view.world_to_ndc.tobytes(),
             (width, height),
             pose.key(),
             (float(cast(float, light_size)), int(cast(int, samples))),
             tuple((*a.key(), a.caster, a.receiver, a.transmittance) for a in snapshot.actors),
+            faces_seen,
         )
         if self._traced is None or self._traced[0] != key:
             require_traceable(
@@ -741,8 +743,9 @@ class ShadowsComponent:
                     caster=a.caster,
                     receiver=a.receiver,
                     opacity=1.0 - a.transmittance,
+                    faces_seen=seen,
                 )
-                for a in snapshot.actors
+                for a, seen in zip(snapshot.actors, faces_seen, strict=True)
             ]
             result = trace_reference(
                 meshes,

@@ -54,6 +54,10 @@ def _wireframe_hidden_lines(pl):
     pl.enable_hidden_line_removal()
 
 
+def _wireframe_caster(pl):
+    pl.actors["box"].prop.style = "wireframe"
+
+
 def _edges(pl):
     for name in ("ground", "box", "sphere", "cylinder"):
         pl.actors[name].prop.show_edges = True
@@ -66,6 +70,7 @@ FEATURES = {
     "depth_peeling": _depth_peeling,
     "parallel_projection": _parallel,
     "wireframe_hidden_lines": _wireframe_hidden_lines,
+    "wireframe_caster": _wireframe_caster,
     "show_edges": _edges,
 }
 

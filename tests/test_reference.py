@@ -183,6 +183,23 @@ def test_non_receiver_in_front_gives_nan_pixels():
     np.testing.assert_array_equal(np.isnan(result.visibility), on_card)
 
 
+def test_faces_not_drawn_are_seen_through_and_still_cast():
+    view = camera_view((0.0, 0.0, 10.0), up=(0.0, 1.0, 0.0))
+    frame = rectangle(-0.5, 0.5, -0.5, 0.5, 2.0)
+    frame = SceneMesh(frame.points, frame.triangles, faces_seen=False)
+    result = trace_reference([ground(), frame], view, point_light((0.0, 0.0, 3.0)))
+    assert (result.mesh_index == 0).all()  # the ground shows where the card's faces are
+    solid = trace_reference(
+        [ground(), rectangle(-0.5, 0.5, -0.5, 0.5, 2.0)], view, point_light((0.0, 0.0, 3.0))
+    )
+    behind = solid.mesh_index == 1
+    # under the card, seen straight down through it: the card's shadow (1.5 wide), all dark
+    assert behind.sum() > 50
+    np.testing.assert_array_equal(result.visibility[behind], 0.0)
+    lit = result.visibility == 1.0
+    assert lit.sum() + (result.visibility == 0.0).sum() == lit.size
+
+
 def test_non_caster_casts_no_shadow():
     view = camera_view((5.0, -7.0, 8.0))
     card = rectangle(-0.5, 0.5, -0.5, 0.5, 1.0, caster=False)

@@ -82,6 +82,39 @@ def test_camera_inside_a_volume_needs_zfail_and_auto_chooses_it():
     assert wrong.misclassified > 0.5  # z-pass from inside a volume inverts the count
 
 
+def test_a_wireframe_caster_is_counted_with_zfail_as_the_camera_sees_into_its_volume():
+    scene = standard_scene()
+    scene.box.prop.style = "wireframe"  # the ground below the box shows through its faces
+    error = measured(scene)
+    report = volume_light_report(scene.plotter)
+    assert error.lit_pixels > 100_000
+    assert error.misclassified <= EXACT
+    assert any(
+        note.startswith("zfail: actor 'box' is drawn without faces") for note in report.notes
+    )
+    forced = standard_scene()
+    forced.box.prop.style = "wireframe"
+    wrong = measured(forced, zmode="zpass")
+    assert wrong.misclassified > 0.002  # entering the volume through its light cap is not counted
+    forced.plotter.enable_hidden_line_removal()  # the faces hide the inside again
+    draw(forced.plotter)
+    assert forced.plotter.shadows.measure(forced.light).misclassified <= EXACT
+
+
+def test_a_caster_turned_to_wireframe_after_enable_is_counted_again():
+    scene = standard_scene()
+    assert measured(scene).misclassified <= EXACT
+    assert "zpass: the camera is outside every shadow volume" in (
+        volume_light_report(scene.plotter).notes
+    )
+    scene.box.prop.style = "wireframe"
+    draw(scene.plotter)
+    assert scene.plotter.shadows.measure(scene.light).misclassified <= EXACT
+    scene.box.prop.style = "surface"
+    draw(scene.plotter)
+    assert scene.plotter.shadows.measure(scene.light).misclassified <= EXACT
+
+
 @pytest.mark.parametrize(
     ("scale", "offset", "extrude"),
     [(1e6, (1e6, 1e6, 1e6), "gpu"), (1e6, (1e6, 1e6, 1e6), "cpu"), (1e-4, (0, 0, 0), "gpu")],

@@ -21,7 +21,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.model.plan import FALLBACK_TECHNIQUES, SERVES, Cast, VolumePlan
 from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.volume_zmode import choose_zmode
-from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.snapshot import ActorState, Snapshot, hides_what_is_behind
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.volume_light import (
@@ -113,9 +113,22 @@ def choose_volume_zmode(plan: Cast, volume: VolumePlan, renderer: vtk.vtkRendere
     """
     if volume.enclosing is not None:
         return
-    zmode, why = choose_zmode(
-        plan.settings.zmode, volume.light, renderer, [(c.name, c.bounds) for c, _ in volume.closed]
-    )
+    open_to_view = [c.name for c, _ in volume.closed if not hides_what_is_behind(c, renderer)]
+    if plan.settings.zmode == "auto" and open_to_view:
+        zmode, why = (
+            "zfail",
+            (
+                f"{open_to_view[0]} is drawn without faces: the camera sees into its shadow volume "
+                "through them, which only z-fail counts"
+            ),
+        )
+    else:
+        zmode, why = choose_zmode(
+            plan.settings.zmode,
+            volume.light,
+            renderer,
+            [(c.name, c.bounds) for c, _ in volume.closed],
+        )
     note = f"{zmode}: {why}"
     old = f"{volume.zmode}: {volume.zmode_reason}"
     if volume.zmode and old in plan.notes:

@@ -62,6 +62,11 @@ class ActorState:
         Share of light each of its surfaces lets through as a caster:
         ``1 - opacity``, or what ``pl.shadows.set_caster(actor,
         transmittance=...)`` set.
+    faces_drawn : bool
+        Whether VTK draws its faces: ``False`` for the wireframe and points
+        styles, between whose lines or points the camera sees what lies
+        behind (unless the renderer's hidden-line removal hides it). Its
+        triangles cast all the same.
     """
 
     actor: vtk.vtkActor
@@ -73,6 +78,7 @@ class ActorState:
     receiver: bool
     plane: bool = False
     transmittance: float = 0.0
+    faces_drawn: bool = True
 
     def model_matrix(self) -> np.ndarray:
         """Return the model-to-world matrix of :attr:`triangles`' centred points (float64).
@@ -762,8 +768,43 @@ class SceneReader:
             receiver,
             receiver and key in self.planes,
             self.transmitting.get(key, transmittance(actor)),
+            actor.GetProperty().GetRepresentation() == vtk.VTK_SURFACE,
         )
         return state, not receiver
+
+
+def hides_what_is_behind(state: ActorState, renderer: vtk.vtkRenderer) -> bool:
+    """Return whether an actor hides what lies behind it from the renderer's camera.
+
+    Its faces do when VTK draws them (:attr:`ActorState.faces_drawn`), or
+    when the renderer's hidden-line removal draws them into depth.
+
+    Parameters
+    ----------
+    state : ActorState
+        The actor this frame.
+    renderer : vtk.vtkRenderer
+        The renderer drawing it.
+
+    Returns
+    -------
+    bool
+        ``False`` for a wireframe or points actor without hidden-line removal.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.scene.snapshot import SceneReader, hides_what_is_behind
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> _ = pl.add_mesh(pv.Cube(), style="wireframe")
+    >>> state = SceneReader(lambda actor: "a cube").read(pl.renderer).actors[0]
+    >>> hides_what_is_behind(state, pl.renderer)
+    False
+    >>> pl.enable_hidden_line_removal()
+    >>> hides_what_is_behind(state, pl.renderer)
+    True
+    """
+    return state.faces_drawn or bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(renderer))
 
 
 def _roles(state: ActorState) -> tuple[bool, bool, bool]:

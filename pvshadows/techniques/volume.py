@@ -51,7 +51,7 @@ from pvshadows.model.plan import Cast, VolumeCast
 from pvshadows.model.report import PassReport
 from pvshadows.passes.volume_stencil import DepthDraw, VolumeDraw, VolumePasses
 from pvshadows.scene.render_target import tiled_viewport
-from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.snapshot import ActorState, hides_what_is_behind
 from pvshadows.scene.triangles import ActorTriangles, vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
@@ -162,7 +162,8 @@ class VolumeTechnique:
             extrude,
             camera.tobytes(),
             (width, height),
-            tuple(c.key() for c in context.snapshot.actors),
+            tuple((*c.key(), c.faces_drawn) for c in context.snapshot.actors),
+            bool(context.renderer.GetUseHiddenLineRemoval()),
             tuple((*c.key(), c.transmittance) for c, _ in closed),
         )
         if key == state.key:
@@ -216,7 +217,7 @@ class VolumeTechnique:
         self, context: FrameContext, camera: np.ndarray, width: int, height: int
     ) -> PassReport:
         self._depth_frame = context.frame
-        actors = context.snapshot.actors
+        actors = [a for a in context.snapshot.actors if hides_what_is_behind(a, context.renderer)]
         key = (camera.tobytes(), (width, height), tuple(a.key() for a in actors))
         if key == self._depth_key:
             return PassReport(

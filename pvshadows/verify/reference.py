@@ -107,6 +107,11 @@ class SceneMesh:
         Share of the light a caster's surface stops, 0 to 1: each of its
         surfaces a shadow ray crosses lets ``1 - opacity`` through (a closed
         body twice, as VTK's blending draws both its sides).
+    faces_seen : bool, default: True
+        Whether the camera sees its faces. ``False`` for an actor drawn as
+        a wireframe or as points: primary rays pass through its faces (what
+        lies behind shows between its lines), while shadow rays still stop
+        on them when it is a caster, as shadow maps draw its triangles.
 
     Raises
     ------
@@ -131,6 +136,7 @@ class SceneMesh:
     caster: bool = True
     receiver: bool = True
     opacity: float = 1.0
+    faces_seen: bool = True
 
     def __post_init__(self) -> None:
         if not 0.0 <= self.opacity <= 1.0:
@@ -398,9 +404,12 @@ def trace_reference(
     n_pixels = view.width * view.height
     flat = _FlatResult.empty(n_pixels)
     frame = _Frame.around(meshes)
-    if frame is not None:
-        primary = _Triangles.build(meshes, frame, intersector_type, lambda mesh: True)
-        assert primary is not None  # a frame exists only around some triangles
+    primary = (
+        None
+        if frame is None
+        else _Triangles.build(meshes, frame, intersector_type, lambda mesh: mesh.faces_seen)
+    )
+    if frame is not None and primary is not None:
         tracer = _Tracer(
             primary=primary,
             shadow=_Triangles.build(meshes, frame, intersector_type, lambda mesh: mesh.caster),
