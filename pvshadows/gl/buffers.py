@@ -9,13 +9,12 @@ from __future__ import annotations
 import ctypes
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from functools import cache
-from types import SimpleNamespace
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.raw_calls import raw_calls
 
 #: ``GL_UNSIGNED_INT``, the type of every index buffer here.
 _UNSIGNED_INT = 0x1405
@@ -91,7 +90,7 @@ class IndexedBuffers:
         """
         if count <= 0:
             return
-        gl = _raw_calls()
+        gl = raw_calls()
         gl.bind(self.vertex_array(program.FindAttributeArray("position")))
         gl.draw(mode, count, _UNSIGNED_INT, 4 * first)
         gl.bind(0)
@@ -173,37 +172,6 @@ class CasterDraws:
         )
 
 
-@cache
-def _raw_calls() -> SimpleNamespace:
-    """Return plain ctypes bindings of the GL calls of the caster loop.
-
-    Looked up in the GL library PyOpenGL loaded for the window's platform,
-    as PyOpenGL itself does for core functions, but declared with ctypes'
-    own argument types: PyOpenGL's converters cost more than the calls.
-    """
-    from OpenGL import platform
-
-    library = platform.PLATFORM.GL
-    c_int, c_uint = ctypes.c_int, ctypes.c_uint
-
-    def bound(name: str, *arguments: type) -> Callable:
-        prototype = ctypes.CFUNCTYPE(None, *arguments)
-        try:
-            return prototype((name, library))
-        except AttributeError:  # not exported (some libOSMesa builds): only by address
-            address = platform.PLATFORM.getExtensionProcedure(name.encode())
-            if not address:
-                msg = f"the OpenGL library of this window does not provide {name}"
-                raise RuntimeError(msg) from None
-            return prototype(address)
-
-    return SimpleNamespace(
-        matrix=bound("glUniformMatrix4fv", c_int, c_int, ctypes.c_ubyte, ctypes.c_void_p),
-        bind=bound("glBindVertexArray", c_uint),
-        draw=bound("glDrawElements", c_uint, c_int, c_uint, ctypes.c_void_p),
-    )
-
-
 def draw_casters(
     program: vtk.vtkShaderProgram,
     casters: CasterDraws,
@@ -233,7 +201,7 @@ def draw_casters(
     """
     if not len(casters):
         return
-    gl = _raw_calls()
+    gl = raw_calls()
     location = program.FindUniform(matrix_uniform)
     position = program.FindAttributeArray("position")
     columns = np.ascontiguousarray(casters.model_to_light.transpose(0, 2, 1), dtype=np.float32)

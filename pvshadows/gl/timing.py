@@ -6,8 +6,9 @@ wait for the GPU in a normal frame. A pass's :class:`PassReport` gets its
 ``ms`` then; a query still not ready :data:`MAX_FRAMES_IN_FLIGHT` frames
 later is waited for, as engines bound the frames the GPU may lag behind.
 
-PyOpenGL's wrapper of ``glGetQueryObjectui64v`` has no array type for 64-bit
-integers, so the raw entry point is called with a ctypes integer.
+The query calls go through plain ctypes bindings
+(:func:`pvshadows.gl.raw_calls.raw_calls`): PyOpenGL's argument converters
+would cost more than the calls, five of them per pass and frame.
 """
 
 from __future__ import annotations
@@ -21,10 +22,13 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.raw_calls import raw_calls
 from pvshadows.model.report import PassReport
 
 #: Frames a pass's timing may wait for the GPU before it is read with a wait.
 MAX_FRAMES_IN_FLIGHT = 3
+#: ``GL_TIMESTAMP``, ``GL_QUERY_RESULT`` and ``GL_QUERY_RESULT_AVAILABLE``.
+_TIMESTAMP, _RESULT, _RESULT_AVAILABLE = 0x8E28, 0x8866, 0x8867
 
 
 class PassTimer:
@@ -59,16 +63,16 @@ class PassTimer:
         ------
         None
         """
-        gl = self._gl
         if len(self._free) < 2:
-            self._free.extend(int(q) for q in np.asarray(gl.glGenQueries(2)).ravel())
+            self._free.extend(int(q) for q in np.asarray(self._gl.glGenQueries(2)).ravel())
         start, end = self._free.pop(), self._free.pop()
+        counter = raw_calls().query_counter
         began = time.thread_time()
-        gl.glQueryCounter(start, gl.GL_TIMESTAMP)
+        counter(start, _TIMESTAMP)
         try:
             yield
         finally:
-            gl.glQueryCounter(end, gl.GL_TIMESTAMP)
+            counter(end, _TIMESTAMP)
             self._pending.append((start, end, report, self._frame))
             report.cpu_ms += (time.thread_time() - began) * 1e3
 
@@ -86,22 +90,20 @@ class PassTimer:
         self._frame += 1
         if not self._pending:
             return
-        from OpenGL.raw.GL.VERSION.GL_3_3 import glGetQueryObjectui64v
-
-        gl = self._gl
+        result = raw_calls().query_result
         ready, begun, ended = ctypes.c_uint64(0), ctypes.c_uint64(0), ctypes.c_uint64(0)
         kept = []
         for start, end, report, frame in self._pending:
             late = wait or self._frame - frame >= MAX_FRAMES_IN_FLIGHT
             if not late:
-                glGetQueryObjectui64v(end, gl.GL_QUERY_RESULT_AVAILABLE, ctypes.byref(ready))
+                result(end, _RESULT_AVAILABLE, ctypes.byref(ready))
                 if not ready.value:
                     kept.append((start, end, report, frame))
                     continue
             elif not wait:
                 self.waited += 1
-            glGetQueryObjectui64v(start, gl.GL_QUERY_RESULT, ctypes.byref(begun))
-            glGetQueryObjectui64v(end, gl.GL_QUERY_RESULT, ctypes.byref(ended))
+            result(start, _RESULT, ctypes.byref(begun))
+            result(end, _RESULT, ctypes.byref(ended))
             report.ms = (ended.value - begun.value) * 1e-6
             self._free.extend((start, end))
         self._pending = kept

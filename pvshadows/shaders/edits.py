@@ -357,8 +357,9 @@ class ReceiverEdits:
             edits (drawn as VTK built it), or some edits did not land in the
             program VTK compiled.
         """
-        for key in self._flagged & set(self._edits):
-            self._note_problem(key)
+        for key in self._flagged:
+            if key in self._edits:
+                self._note_problem(key)
         return {key: (self._edits[key].actor, why) for key, why in self._problems.items()}
 
     def _forget(self, key: str) -> None:

@@ -133,7 +133,7 @@ def overhead_scenes(*, quick: bool = False, huge: bool = False) -> list[Overhead
     -------
     list of OverheadScene
         The standard scene with each kind of light, then the series over
-        casters (1, 50, 500), spot lights (1, 4, 16) and triangles of one
+        casters (1, 50, 500, 1000), spot lights (1, 4, 16) and triangles of one
         caster under a point light (10 k, 1 M, and 10 M with ``huge``).
 
     Examples
@@ -147,7 +147,7 @@ def overhead_scenes(*, quick: bool = False, huge: bool = False) -> list[Overhead
     if quick:
         return [OverheadScene("standard", "point")]
     scenes = [OverheadScene("standard", kind) for kind in ("point", "spot", "directional")]
-    scenes += [OverheadScene("actors", actors=n) for n in (1, 50, 500)]
+    scenes += [OverheadScene("actors", actors=n) for n in (1, 50, 500, 1000)]
     scenes += [OverheadScene("lights", lights=n) for n in (1, 4, 16)]
     counts = (10_000, 1_000_000, 10_000_000) if huge else (10_000, 1_000_000)
     scenes += [OverheadScene("triangles", "point", actors=1, triangles=n) for n in counts]
