@@ -244,9 +244,11 @@ def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:
     boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
     lo, hi = boxes[:, 0] - pose.position, boxes[:, 1] - pose.position
     holds_light = np.all(lo <= 0.0, axis=1) & np.all(hi >= 0.0, axis=1)
-    corners = np.where(_CORNERS[None], hi[:, None, :], lo[:, None, :])
-    planes = _cone_planes(tuple(pose.direction.tolist()), float(pose.cone_angle))
-    behind_a_plane = np.any(np.all(corners @ planes.T < 0.0, axis=1), axis=1)
+    # A box is behind a plane through the light when its corner farthest along the
+    # plane's normal is: the normal's positive parts meet ``hi``, its negative ones ``lo``.
+    normals = _cone_planes(tuple(pose.direction.tolist()), float(pose.cone_angle)).T
+    farthest = hi @ np.maximum(normals, 0.0) + lo @ np.minimum(normals, 0.0)
+    behind_a_plane = np.any(farthest < 0.0, axis=1)
     center = 0.5 * (lo + hi)
     radius = 0.5 * np.linalg.norm(hi - lo, axis=1)
     along = center @ pose.direction
