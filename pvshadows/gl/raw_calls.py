@@ -1,8 +1,8 @@
 """GL entry points bound with plain ctypes, for the calls pvshadows makes every frame.
 
-PyOpenGL converts and checks every argument in Python, which costs more than
-the GL call itself: a few microseconds each, paid per caster drawn and per
-pass timed. These bindings are looked up in the GL library PyOpenGL loaded
+PyOpenGL's wrapped functions convert and check every argument in Python,
+which costs more than the GL call itself: a few microseconds each, paid per
+caster drawn and per pass timed. These bindings are looked up in the GL library PyOpenGL loaded
 for the window's platform, as PyOpenGL itself does for core functions, but
 declared with ctypes' own argument types.
 """

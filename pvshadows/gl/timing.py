@@ -42,6 +42,7 @@ class PassTimer:
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._gl = opengl_for(window)
+        self._calls = raw_calls()
         self._free: list[int] = []
         self._pending: list[tuple[int, int, PassReport, int]] = []
         self._frame = 0
@@ -66,7 +67,7 @@ class PassTimer:
         if len(self._free) < 2:
             self._free.extend(int(q) for q in np.asarray(self._gl.glGenQueries(2)).ravel())
         start, end = self._free.pop(), self._free.pop()
-        counter = raw_calls().query_counter
+        counter = self._calls.query_counter
         began = time.thread_time()
         counter(start, _TIMESTAMP)
         try:
@@ -90,7 +91,7 @@ class PassTimer:
         self._frame += 1
         if not self._pending:
             return
-        result = raw_calls().query_result
+        result = self._calls.query_result
         ready, begun, ended = ctypes.c_uint64(0), ctypes.c_uint64(0), ctypes.c_uint64(0)
         kept = []
         for start, end, report, frame in self._pending:
