@@ -4,7 +4,16 @@
 // axes with the light at the origin, computed in double precision on the CPU.
 
 in vec3 position;
+#ifdef BATCHED
+// Many casters in one draw (pvshadows.gl.caster_batch): each vertex carries its
+// caster's row, and the pass sets the matrices of BATCHED rows from rowBase.
+in int casterRow;
+uniform mat4 modelToLights[BATCHED];
+uniform int rowBase;
+#define modelToLight modelToLights[casterRow - rowBase]
+#else
 uniform mat4 modelToLight;
+#endif
 
 #ifdef SIX_PASSES
 uniform mat4 faceProjection;   // 90-degree projection times this face's rotation

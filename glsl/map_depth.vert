@@ -6,7 +6,16 @@
 // double precision on the CPU.
 
 in vec3 position;
+#ifdef BATCHED
+// Many casters in one draw (pvshadows.gl.caster_batch): each vertex carries its
+// caster's row, and the pass sets the matrices of BATCHED rows from rowBase.
+in int casterRow;
+uniform mat4 modelToLights[BATCHED];
+uniform int rowBase;
+#define modelToLight modelToLights[casterRow - rowBase]
+#else
 uniform mat4 modelToLight;
+#endif
 uniform mat4 lightToClip;
 out vec3 lightToPoint;
 

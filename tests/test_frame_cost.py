@@ -20,6 +20,7 @@ def counters(pl):
         "waited": shadows._timer.waited,
         "block uploads": shadows._block.uploads,
         "planned": shadows.memo.made,
+        "view tests": shadows.memo.view_tests,
     }
 
 
@@ -61,6 +62,24 @@ def test_a_camera_that_sees_the_same_receivers_keeps_the_plans():
     assert counted["planned"] == 0
     assert counted["block uploads"] == 3
     assert counted["uniforms"] == 0
+
+
+def test_a_camera_that_sees_every_receiver_whole_tests_none_one_by_one():
+    pl, _ = crowd()
+    pl.camera.Dolly(0.1)
+    pl.renderer.ResetCameraClippingRange()
+    draw(pl)
+    before = counters(pl)
+    for _ in range(3):
+        pl.camera.Azimuth(5)
+        pl.renderer.ResetCameraClippingRange()
+        draw(pl)
+    assert change(before, counters(pl))["view tests"] == 0
+    pl.camera.Zoom(20)  # now part of the crowd only
+    draw(pl)
+    receivers = len(pl.shadows._renderers[0].snapshot.receivers)
+    assert receivers > 200
+    assert change(before, counters(pl))["view tests"] == receivers
 
 
 def test_receivers_coming_into_view_and_leaving_it_keep_the_plans():

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.gl.caster_batch import MIN_CASTERS, BatchKeeper, CasterBatch
 from pvshadows.scene.snapshot import CASTERS, ActorState, Snapshot
 
 
@@ -20,6 +21,8 @@ class ActorBuffers:
         self._window = window
         self._buffers: dict[str, tuple[int, TriangleBuffers]] = {}
         self._casters: tuple[Snapshot, list[TriangleBuffers]] | None = None
+        #: The small casters of the last snapshot in one vertex array.
+        self.batches = BatchKeeper(window)
 
     def get(self, state: ActorState) -> TriangleBuffers:
         """Return the buffers of an actor, uploading them if its data changed.
@@ -74,6 +77,24 @@ class ActorBuffers:
         self._casters = (snapshot, listed)
         return listed
 
+    def batch_of(self, snapshot: Snapshot) -> CasterBatch | None:
+        """Return the batch of a snapshot's small casters, or ``None`` for a scene of few casters.
+
+        Parameters
+        ----------
+        snapshot : Snapshot
+            This frame's actors.
+
+        Returns
+        -------
+        CasterBatch or None
+            See :class:`~pvshadows.gl.caster_batch.BatchKeeper`; ``None``
+            below :data:`~pvshadows.gl.caster_batch.MIN_CASTERS` casters.
+        """
+        if len(snapshot.casters) < MIN_CASTERS:
+            return None
+        return self.batches.of(snapshot)
+
     def keep_only(self, states: list[ActorState]) -> None:
         """Release the buffers of actors that are gone.
 
@@ -90,3 +111,4 @@ class ActorBuffers:
     def release(self) -> None:
         """Release every buffer."""
         self.keep_only([])
+        self.batches.release()

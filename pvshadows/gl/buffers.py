@@ -14,6 +14,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.caster_batch import MIN_CASTERS, CasterBatch
 from pvshadows.gl.raw_calls import raw_calls
 
 #: ``GL_UNSIGNED_INT``, the type of every index buffer here.
@@ -142,11 +143,17 @@ class CasterDraws:
         ``(n, 4, 4)`` float64: each caster's buffer coordinates to the light's space.
     culls : sequence of {"front", "back", None}
         Each caster's side of its triangles not to draw.
+    batch : CasterBatch or None
+        The snapshot's small casters in one vertex array, when there is one.
+    rows : numpy.ndarray or None
+        ``(n,)`` each caster's row in ``batch``, -1 for one drawn on its own.
     """
 
     buffers: Sequence[IndexedBuffers]
     model_to_light: np.ndarray
     culls: Sequence[str | None]
+    batch: CasterBatch | None = None
+    rows: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self.buffers)
@@ -169,14 +176,59 @@ class CasterDraws:
             [self.buffers[i] for i in chosen],
             self.model_to_light[chosen],
             [self.culls[i] for i in chosen],
+            self.batch,
+            None if self.rows is None else self.rows[chosen],
         )
+
+    def batched(self) -> np.ndarray:
+        """Return which casters a pass draws through :attr:`batch`.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n,)`` bool: the batch's casters, when the pass draws at least
+            :data:`~pvshadows.gl.caster_batch.MIN_CASTERS` of them; else none.
+        """
+        if self.batch is None or self.rows is None:
+            return np.zeros(len(self), dtype=bool)
+        inside = self.rows >= 0
+        return inside if int(inside.sum()) >= MIN_CASTERS else np.zeros(len(self), dtype=bool)
 
 
 def draw_casters(
+    programs: Callable[[bool], vtk.vtkShaderProgram],
+    casters: CasterDraws,
+    cull: Callable[[str | None], None],
+) -> None:
+    """Draw casters' triangles: the batched ones in a few calls, the others one by one.
+
+    Parameters
+    ----------
+    programs : callable
+        Binds and returns the pass's program, given whether it draws the
+        batch (built with ``BATCHED``) or casters one by one (reading
+        ``uniform mat4 modelToLight``), its other uniforms set.
+    casters : CasterDraws
+        What to draw: buffers, matrices and sides to cull.
+    cull : callable
+        Sets the side to cull (:class:`pvshadows.passes.gl_state.FaceCulling`).
+    """
+    if not len(casters):
+        return
+    batched = casters.batched()
+    every, some = bool(batched.all()), bool(batched.any())
+    if not every:
+        draw_one_by_one(programs(False), casters.subset(~batched) if some else casters, cull)
+    if some:
+        part = casters if every else casters.subset(batched)
+        assert part.batch is not None and part.rows is not None  # batched() said so
+        part.batch.draw(programs(True), part.rows, part.model_to_light, part.culls, cull)
+
+
+def draw_one_by_one(
     program: vtk.vtkShaderProgram,
     casters: CasterDraws,
     cull: Callable[[str | None], None],
-    matrix_uniform: str = "modelToLight",
 ) -> None:
     """Draw casters' triangles, each with its own ``mat4`` uniform, in few Python calls.
 
@@ -185,24 +237,19 @@ def draw_casters(
     costs that call, its vertex array's binding, its draw and a culling
     call when its side differs from the last caster's. Drawing casters one
     ``vtkShaderProgram.SetUniformMatrix4x4v`` at a time cost about three
-    times as much: most of a light's pass over 500 casters.
+    times as much.
 
     Parameters
     ----------
     program : vtk.vtkShaderProgram
-        The bound program: ``in vec3 position`` and ``uniform mat4``
-        ``matrix_uniform``.
+        The bound program: ``in vec3 position`` and ``uniform mat4 modelToLight``.
     casters : CasterDraws
         What to draw: buffers, matrices and sides to cull.
     cull : callable
         Sets the side to cull (:class:`pvshadows.passes.gl_state.FaceCulling`).
-    matrix_uniform : str, default: "modelToLight"
-        The name of the matrix uniform.
     """
-    if not len(casters):
-        return
     gl = raw_calls()
-    location = program.FindUniform(matrix_uniform)
+    location = program.FindUniform("modelToLight")
     position = program.FindAttributeArray("position")
     columns = np.ascontiguousarray(casters.model_to_light.transpose(0, 2, 1), dtype=np.float32)
     base = columns.ctypes.data

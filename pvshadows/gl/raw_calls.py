@@ -43,7 +43,8 @@ def raw_calls() -> SimpleNamespace:
     -------
     types.SimpleNamespace
         ``matrix`` (``glUniformMatrix4fv``), ``bind`` (``glBindVertexArray``),
-        ``draw`` (``glDrawElements``), ``query_counter``
+        ``draw`` (``glDrawElements``), ``multi_draw``
+        (``glMultiDrawElements``), ``uniform_int`` (``glUniform1i``), ``query_counter``
         (``glQueryCounter``) and ``query_result`` (``glGetQueryObjectui64v``).
 
     Examples
@@ -61,6 +62,10 @@ def raw_calls() -> SimpleNamespace:
         matrix=_bound("glUniformMatrix4fv", _int, _int, ctypes.c_ubyte, ctypes.c_void_p),
         bind=_bound("glBindVertexArray", _uint),
         draw=_bound("glDrawElements", _uint, _int, _uint, ctypes.c_void_p),
+        multi_draw=_bound(
+            "glMultiDrawElements", _uint, ctypes.c_void_p, _uint, ctypes.c_void_p, _int
+        ),
+        uniform_int=_bound("glUniform1i", _int, _int),
         query_counter=_bound("glQueryCounter", _uint, _uint),
         query_result=_bound("glGetQueryObjectui64v", _uint, _uint, _uint64_p),
     )

@@ -57,15 +57,15 @@ class CubeDepthPass:
         self._window = window
         self._programs = ProgramCache(window)
 
-    def _program(self, passes: str) -> vtk.vtkShaderProgram:
+    def _program(self, passes: str, rows: int) -> vtk.vtkShaderProgram:
+        defines: dict[str, object] = {"BATCHED": rows} if rows else {}
         if passes == "single":
             stages = ("cube_depth.vert", "distance_depth.frag", "cube_depth.geom")
-            return self._programs.get(passes, lambda: compile_files(self._window, *stages))
+        else:
+            stages = ("cube_depth.vert", "distance_depth.frag", "")
+            defines["SIX_PASSES"] = True
         return self._programs.get(
-            passes,
-            lambda: compile_files(
-                self._window, "cube_depth.vert", "distance_depth.frag", defines={"SIX_PASSES": True}
-            ),
+            (passes, rows), lambda: compile_files(self._window, *stages, defines=defines)
         )
 
     def render(
@@ -106,11 +106,23 @@ class CubeDepthPass:
             raise ValueError(msg)
         face_mask = int(np.bitwise_or.reduce(face_masks, initial=0))
         projections = cube_face_projections(far * 1e-4, far)
-        program = self._program(passes)
         records: list[PassReport] = []
+        face = -1  # the face a pass of six draws; -1: every face in one draw
+
+        def program(batched: bool) -> vtk.vtkShaderProgram:
+            rows = casters.batch.chunk if batched and casters.batch is not None else 0
+            chosen = self._program(passes, rows)
+            bind_program(self._window, chosen)
+            chosen.SetUniformf("invFar", 1.0 / far)
+            if face < 0:
+                chosen.SetUniformMatrix4x4v("faceProjection", 6, column_major(projections))
+                chosen.SetUniformi("faceMask", face_mask)
+                chosen.SetUniformi("layerBase", cube.layer_base)
+            else:
+                chosen.SetUniformMatrix4x4v("faceProjection", 1, column_major(projections[face]))
+            return chosen
+
         with depth_only_state(self._window):
-            bind_program(self._window, program)
-            program.SetUniformf("invFar", 1.0 / far)
             cull = FaceCulling(self._window)
             if passes == "single":
                 record = PassReport(
@@ -119,9 +131,6 @@ class CubeDepthPass:
                 records.append(record)
                 with timer.measure(record):
                     cube.bind_cleared()
-                    program.SetUniformMatrix4x4v("faceProjection", 6, column_major(projections))
-                    program.SetUniformi("faceMask", face_mask)
-                    program.SetUniformi("layerBase", cube.layer_base)
                     draw_casters(program, casters, cull)
             else:
                 for face in range(6):
@@ -137,9 +146,6 @@ class CubeDepthPass:
                             )
                             continue
                         record.detail = f"{len(drawn)} of {len(casters)} casters"
-                        program.SetUniformMatrix4x4v(
-                            "faceProjection", 1, column_major(projections[face])
-                        )
                         draw_casters(program, drawn, cull)
         return records
 

@@ -27,10 +27,12 @@ class MapDepthPass:
         self._window = window
         self._programs = ProgramCache(window)
 
-    def _program(self, along_z: bool) -> vtk.vtkShaderProgram:
-        defines = {"DEPTH_ALONG_Z": True} if along_z else {}
+    def _program(self, along_z: bool, rows: int) -> vtk.vtkShaderProgram:
+        defines: dict[str, object] = {"DEPTH_ALONG_Z": True} if along_z else {}
+        if rows:
+            defines["BATCHED"] = rows
         return self._programs.get(
-            along_z,
+            (along_z, rows),
             lambda: compile_files(
                 self._window, "map_depth.vert", "distance_depth.frag", defines=defines
             ),
@@ -71,14 +73,20 @@ class MapDepthPass:
         list of PassReport
             The pass's report.
         """
-        program = self._program(along_z)
+        to_clip = column_major(light_to_clip)
+
+        def program(batched: bool) -> vtk.vtkShaderProgram:
+            rows = casters.batch.chunk if batched and casters.batch is not None else 0
+            chosen = self._program(along_z, rows)
+            bind_program(self._window, chosen)
+            chosen.SetUniformf("invFar", 1.0 / depth_range)
+            chosen.SetUniformMatrix4x4v("lightToClip", 1, to_clip)
+            return chosen
+
         report = PassReport("map depth", "run", detail)
         with depth_only_state(self._window) as gl, timer.measure(report):
             depth.bind_as_target()
             gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
-            bind_program(self._window, program)
-            program.SetUniformf("invFar", 1.0 / depth_range)
-            program.SetUniformMatrix4x4v("lightToClip", 1, column_major(light_to_clip))
             draw_casters(program, casters, FaceCulling(self._window))
         return [report]
 

@@ -36,7 +36,7 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.reach import ReachCache
 from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
-from pvshadows.scene.culling import box_corners, boxes_in_frustum
+from pvshadows.scene.culling import box_corners, box_inside_frustum, boxes_in_frustum
 from pvshadows.scene.light_kit import unshadowed_reason
 from pvshadows.scene.lights import (
     LightKind,
@@ -108,12 +108,15 @@ class PlanMemo:
         Frames that planned some light again.
     planned : int
         Lights planned again, over all frames.
+    view_tests : int
+        Receivers tested one by one against the view, over all frames.
     """
 
     def __init__(self) -> None:
         self.kept = 0
         self.made = 0
         self.planned = 0
+        self.view_tests = 0
         self._plans: dict[int, tuple[tuple, LightPlan, int, ViewUse, object]] = {}
         self._in_view: tuple[Snapshot, FrameView, np.ndarray] | None = None
 
@@ -123,10 +126,20 @@ class PlanMemo:
         self._in_view = None
 
     def in_view(self, snapshot: Snapshot, view: FrameView) -> np.ndarray:
-        """Return which of the snapshot's receivers the view sees (tested when either changed)."""
+        """Return which of the snapshot's receivers the view sees (tested when either changed).
+
+        When the box round every receiver lies inside the view, each of them
+        does, and none is tested on its own (:attr:`view_tests` counts those
+        that are).
+        """
         kept = self._in_view
         if kept is None or kept[0] is not snapshot or kept[1] is not view:
-            kept = (snapshot, view, boxes_in_frustum(snapshot.receiver_bounds, view.planes))
+            if box_inside_frustum(snapshot.receivers_box, view.planes):
+                seen = np.ones(len(snapshot.receivers), dtype=bool)
+            else:
+                seen = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
+                self.view_tests += len(seen)
+            kept = (snapshot, view, seen)
             self._in_view = kept
         return kept[2]
 

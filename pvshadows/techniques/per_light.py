@@ -83,7 +83,8 @@ def caster_draws(
     Returns
     -------
     CasterDraws
-        Their buffers, ``world_to_light @ model_matrix`` and sides to cull.
+        Their buffers, ``world_to_light @ model_matrix``, sides to cull and
+        rows in the snapshot's batch of small casters.
     """
     every = buffers.of_casters(snapshot)
     rows = None if casters is snapshot.casters else snapshot.caster_rows(casters).tolist()
@@ -93,7 +94,9 @@ def caster_draws(
     if settings.cull_front:  # only then: finding whether a caster is closed reads its triangles
         sides = snapshot.caster_sides
         culls = sides if rows is None else [sides[row] for row in rows]
-    return CasterDraws(drawn, world_to_light @ models, culls)
+    batch = buffers.batch_of(snapshot)
+    in_batch = None if batch is None else batch.rows if rows is None else batch.rows[rows]
+    return CasterDraws(drawn, world_to_light @ models, culls, batch, in_batch)
 
 
 class PerLightMaps(Generic[StateT, PassT]):

@@ -1,0 +1,342 @@
+"""Many small casters in one set of buffers, drawn by a depth pass in a few calls.
+
+Drawn one by one, a caster costs a pass its matrix, its vertex array's
+binding and its draw: about 4 microseconds of CPU each, 4 ms a pass over
+1 000 casters. Here every caster of up to :data:`SMALL` triangles shares one
+vertex buffer, one index buffer and one vertex array; each vertex also
+carries its caster's row, and the vertex stage reads that caster's matrix
+from a uniform array (``BATCHED`` in ``glsl/map_depth.vert`` and
+``glsl/cube_depth.vert``). A pass then sets the
+matrices of a chunk of rows in one call and draws the chunk's casters with
+one ``glMultiDrawElements`` per side to cull: a few calls for any number of
+casters. Positions and matrices are the float32 values the one-by-one draw
+uses, so the depths written are the same.
+
+A caster's triangles stay in the batch while only its pose changes; new
+points of the same size are written over its own range; any other change
+of the casters builds the batch again.
+"""
+
+from __future__ import annotations
+
+import ctypes
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from pvshadows import _vtk as vtk
+from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.raw_calls import raw_calls
+from pvshadows.scene.snapshot import CASTERS, ActorState, Snapshot
+
+#: Casters of at most this many triangles go into the batch; a bigger one is
+#: drawn on its own, where its draw call is a small part of its cost.
+SMALL = 65_536
+#: A pass draws through the batch from this many of its casters on.
+MIN_CASTERS = 16
+#: The most rows one chunk of matrices holds.
+MAX_CHUNK = 256
+_UNSIGNED_INT, _TRIANGLES = 0x1405, 0x0004
+#: The sides to cull, by the small integers that stand for them.
+_SIDE_NAMES = (None, "front", "back")
+
+
+def chunk_rows(window: vtk.vtkOpenGLRenderWindow) -> int:
+    """Return how many caster matrices the vertex stage can hold in one uniform array.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        A window whose context is current.
+
+    Returns
+    -------
+    int
+        A quarter of ``GL_MAX_VERTEX_UNIFORM_COMPONENTS`` over 16 floats
+        (room is left for the pass's other uniforms), at most
+        :data:`MAX_CHUNK` and at least 8.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.gl.caster_batch import chunk_rows
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> pl.ren_win.Render()
+    >>> 8 <= chunk_rows(pl.ren_win) <= 256
+    True
+    """
+    gl = opengl_for(window)
+    components = int(gl.glGetIntegerv(gl.GL_MAX_VERTEX_UNIFORM_COMPONENTS))
+    return int(min(MAX_CHUNK, max(8, (components - 64) // 16)))
+
+
+def _batched(state: ActorState) -> bool:
+    return 0 < state.triangles.n_triangles <= SMALL
+
+
+class CasterBatch:
+    """The small casters of a snapshot in one vertex array.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context owns the buffers.
+    casters : list of ActorState
+        The snapshot's casters, in order.
+
+    Attributes
+    ----------
+    rows : numpy.ndarray
+        ``(n,)`` each caster's row in the batch, -1 for one drawn on its own.
+    chunk : int
+        Rows per chunk of matrices (:func:`chunk_rows`).
+    calls : int
+        Matrix chunks and multi-draws submitted so far (a test counts them).
+    """
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow, casters: list[ActorState]) -> None:
+        self._gl = gl = opengl_for(window)
+        self.chunk = chunk_rows(window)
+        self.calls = 0
+        batched = np.fromiter(map(_batched, casters), bool, len(casters))
+        self.rows = np.where(batched, np.cumsum(batched) - 1, -1)
+        members = [state for state in casters if _batched(state)]
+        self._triangles = [state.triangles for state in members]
+        vertex_counts = np.array([len(t.points) for t in self._triangles], dtype=np.int64)
+        index_counts = np.array([t.triangles.size for t in self._triangles], dtype=np.int64)
+        self._first_vertex = np.cumsum(vertex_counts) - vertex_counts
+        first_index = np.cumsum(index_counts) - index_counts
+        #: Each batch row's index count, and where its indices start (bytes), for the draws.
+        self._counts = index_counts.astype(np.int32)
+        self._offsets = (4 * first_index).astype(np.uintp)
+        points = [t.points for t in self._triangles]
+        starts = self._first_vertex.tolist()
+        indices = [
+            t.triangles.ravel() + first for t, first in zip(self._triangles, starts, strict=True)
+        ]
+        owners = np.repeat(np.arange(len(members), dtype=np.int32), vertex_counts)
+        self._positions, self._indices, self._owners = (int(b) for b in gl.glGenBuffers(3))
+        self._upload(self._positions, _stacked(points, np.float32, (0, 3)))
+        self._upload(self._indices, _stacked(indices, np.uint32, (0,)))
+        self._upload(self._owners, owners)
+        self._arrays: dict[tuple[int, int], int] = {}
+
+    def __len__(self) -> int:
+        return len(self._triangles)
+
+    def _upload(self, buffer: int, data: np.ndarray, start: int | None = None) -> None:
+        """Fill a buffer with ``data``, or write it from byte ``start`` on.
+
+        Bound as ``GL_COPY_WRITE_BUFFER``, a target no vertex array keeps: an
+        index buffer bound as such would become part of whatever vertex array
+        is bound.
+        """
+        from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData, glBufferSubData
+
+        gl = self._gl
+        data = np.ascontiguousarray(data)
+        target = gl.GL_COPY_WRITE_BUFFER
+        gl.glBindBuffer(target, buffer)
+        pointer = ctypes.c_void_p(data.ctypes.data) if data.size else None
+        if start is None:
+            glBufferData(target, max(data.nbytes, 4), pointer, gl.GL_STATIC_DRAW)
+        else:
+            glBufferSubData(target, start, data.nbytes, pointer)
+        gl.glBindBuffer(target, 0)
+
+    def refresh(self, casters: list[ActorState], changed: Sequence[tuple[int, ActorState]]) -> bool:
+        """Take the new states of some casters; return ``False`` when the batch must be built again.
+
+        Parameters
+        ----------
+        casters : list of ActorState
+            The snapshot's casters (the same actors, in the same order, as
+            the batch was built from).
+        changed : sequence of tuple
+            ``(row in casters, new state)`` of the casters replaced.
+
+        Returns
+        -------
+        bool
+            Whether the batch now holds every caster's triangles: a caster
+            that only moved changes nothing; new points of the same size are
+            written over its range; anything else cannot be patched.
+        """
+        if len(casters) != len(self.rows):
+            return False
+        for row, state in changed:
+            at = int(self.rows[row])
+            if (at >= 0) != _batched(state):
+                return False
+            if at < 0:
+                continue
+            old, new = self._triangles[at], state.triangles
+            if new is old:
+                continue
+            if len(new.points) != len(old.points) or new.triangles.size != old.triangles.size:
+                return False
+            points = new.points.astype(np.float32)
+            self._upload(self._positions, points, 12 * int(self._first_vertex[at]))
+            if not np.array_equal(new.triangles, old.triangles):
+                indices = (new.triangles.ravel() + self._first_vertex[at]).astype(np.uint32)
+                self._upload(self._indices, indices, int(self._offsets[at]))
+            self._triangles[at] = new
+        return True
+
+    def vertex_array(self, position: int, row: int) -> int:
+        """Return the vertex array feeding attributes ``position`` and ``row`` (made once)."""
+        key = (position, row)
+        if key not in self._arrays:
+            gl = self._gl
+            array = int(gl.glGenVertexArrays(1))
+            gl.glBindVertexArray(array)
+            gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._positions)
+            gl.glVertexAttribPointer(position, 3, gl.GL_FLOAT, gl.GL_FALSE, 0, ctypes.c_void_p(0))
+            gl.glEnableVertexAttribArray(position)
+            gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._owners)
+            gl.glVertexAttribIPointer(row, 1, gl.GL_INT, 0, ctypes.c_void_p(0))
+            gl.glEnableVertexAttribArray(row)
+            gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, self._indices)
+            gl.glBindVertexArray(0)
+            gl.glBindBuffer(gl.GL_ARRAY_BUFFER, 0)
+            self._arrays[key] = array
+        return self._arrays[key]
+
+    def draw(
+        self,
+        program: vtk.vtkShaderProgram,
+        rows: np.ndarray,
+        model_to_light: np.ndarray,
+        culls: Sequence[str | None],
+        cull: Callable[[str | None], None],
+    ) -> None:
+        """Draw some of the batch's casters with a bound program built with ``BATCHED`` rows.
+
+        Parameters
+        ----------
+        program : vtk.vtkShaderProgram
+            The bound program: ``in vec3 position``, ``in int casterRow``,
+            ``uniform mat4 modelToLights[chunk]`` and ``uniform int rowBase``
+            (``BATCHED`` in the depth passes' vertex stages).
+        rows : numpy.ndarray
+            ``(k,)`` the batch rows to draw.
+        model_to_light : numpy.ndarray
+            ``(k, 4, 4)`` their buffer coordinates to the light's space.
+        culls : sequence of {"front", "back", None}
+            Their sides not to draw.
+        cull : callable
+            Sets the side to cull.
+        """
+        if not len(rows):
+            return
+        gl = raw_calls()
+        chunk = self.chunk
+        columns = np.zeros((len(self), 4, 4), dtype=np.float32)
+        columns[rows] = model_to_light.transpose(0, 2, 1)
+        if any(culls):
+            sides = np.array([_SIDE_NAMES.index(c) for c in culls], dtype=np.int8)
+        else:
+            sides = np.zeros(len(rows), dtype=np.int8)
+        if len(rows) > 1 and bool((rows[1:] < rows[:-1]).any()):
+            order = np.argsort(rows, kind="stable")
+            rows, sides = rows[order], sides[order]
+        matrices = program.FindUniform("modelToLights")
+        base_location = program.FindUniform("rowBase")
+        position, row = (program.FindAttributeArray(n) for n in ("position", "casterRow"))
+        gl.bind(self.vertex_array(position, row))
+        starts = np.searchsorted(rows, np.arange(0, len(self), chunk))
+        ends = np.append(starts[1:], len(rows))
+        counts, offsets = self._counts, self._offsets
+        for first, (start, end) in enumerate(zip(starts.tolist(), ends.tolist(), strict=True)):
+            if start == end:
+                continue
+            base = first * chunk
+            size = min(chunk, len(self) - base)
+            gl.matrix(matrices, size, 0, columns[base:].ctypes.data)
+            gl.uniform_int(base_location, base)
+            in_chunk, chunk_sides = rows[start:end], sides[start:end]
+            one_side = not chunk_sides.any()
+            for side in [0] if one_side else np.unique(chunk_sides).tolist():
+                drawn = in_chunk if one_side else in_chunk[chunk_sides == side]
+                cull(_SIDE_NAMES[side])
+                drawn_counts = np.ascontiguousarray(counts[drawn])
+                drawn_offsets = np.ascontiguousarray(offsets[drawn])
+                gl.multi_draw(
+                    _TRIANGLES,
+                    drawn_counts.ctypes.data,
+                    _UNSIGNED_INT,
+                    drawn_offsets.ctypes.data,
+                    len(drawn),
+                )
+                self.calls += 1
+            self.calls += 1
+        gl.bind(0)
+
+    def release(self) -> None:
+        """Delete the buffers and vertex arrays (the context must be current)."""
+        gl = self._gl
+        if self._arrays:
+            gl.glDeleteVertexArrays(len(self._arrays), list(self._arrays.values()))
+            self._arrays.clear()
+        if self._positions:
+            gl.glDeleteBuffers(3, [self._positions, self._indices, self._owners])
+            self._positions = self._indices = self._owners = 0
+
+
+def _stacked(parts: list[np.ndarray], dtype: type, empty: tuple[int, ...]) -> np.ndarray:
+    return np.concatenate(parts).astype(dtype) if parts else np.zeros(empty, dtype=dtype)
+
+
+class BatchKeeper:
+    """Keeps the batch of the last snapshot's casters, patched or built again as they change.
+
+    Parameters
+    ----------
+    window : vtk.vtkOpenGLRenderWindow
+        The window whose context owns the batch.
+
+    Attributes
+    ----------
+    builds : int
+        Times a batch was built (a test counts them).
+    """
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._window = window
+        self._kept: tuple[Snapshot, CasterBatch] | None = None
+        self.builds = 0
+
+    def of(self, snapshot: Snapshot) -> CasterBatch:
+        """Return the batch of a snapshot's casters.
+
+        Parameters
+        ----------
+        snapshot : Snapshot
+            This frame's actors.
+
+        Returns
+        -------
+        CasterBatch
+            Its small casters in one vertex array: the last batch when the
+            snapshot follows the last one asked about and its replaced
+            casters could be patched in, else a new one.
+        """
+        kept = self._kept
+        if kept is not None and kept[0] is snapshot:
+            return kept[1]
+        if kept is not None and snapshot.parent is kept[0]:
+            batch = kept[1]
+            if batch.refresh(snapshot.casters, snapshot.patches(CASTERS)):
+                self._kept = (snapshot, batch)
+                return batch
+        self.release()
+        batch = CasterBatch(self._window, snapshot.casters)
+        self.builds += 1
+        self._kept = (snapshot, batch)
+        return batch
+
+    def release(self) -> None:
+        """Delete the batch."""
+        if self._kept is not None:
+            self._kept[1].release()
+            self._kept = None

@@ -1,0 +1,128 @@
+"""Many small casters drawn through one batch: the same depths as one draw per caster, in few calls.
+
+Each scene is drawn twice, through the batch and one caster at a time (the
+batch's threshold raised out of reach), frame after frame while the light
+moves, a caster moves, a caster's points change in place and a caster's
+mesh is replaced: every pixel must agree. The calls a pass submits and the
+times the batch is built are counted; the shadows are judged against ray
+casting.
+"""
+
+import itertools
+
+import numpy as np
+import pytest
+import pyvista as pv
+
+import pvshadows.gl.actor_buffers as actor_buffers
+import pvshadows.gl.buffers as buffers
+import pvshadows.gl.caster_batch as caster_batch
+from conftest import draw, point_light
+from pvshadows.tools.scenes import spot_light
+
+#: Casters on the grid besides the ground and the floating disc.
+GRID = 5
+
+
+def _scene(kind):
+    plotter = pv.Plotter(off_screen=True, window_size=[240, 180], lighting="none")
+    plotter.add_mesh(pv.Plane(i_size=12, j_size=12), color="white")
+    meshes = []
+    for i in range(GRID):
+        for j in range(GRID):
+            centre = (-4.0 + 2.0 * i, -4.0 + 2.0 * j, 0.6)
+            if (i + j) % 3:
+                mesh = pv.Sphere(radius=0.5, center=centre, theta_resolution=8, phi_resolution=8)
+            else:
+                mesh = pv.Cube(center=centre, x_length=0.8, y_length=0.8, z_length=1.2)
+            plotter.add_mesh(mesh, color="tan")
+            meshes.append(mesh)
+    # an open caster: neither side culled when cull_front is set
+    disc = pv.Disc(center=(0.5, 0.5, 2.5), inner=0.0, outer=0.8, normal=(0, 0, 1), c_res=12)
+    plotter.add_mesh(disc, color="tan")
+    if kind == "spot":
+        light = spot_light((0.5, 0.3, 9.0), (0, 0, 0), cone_angle=40, intensity=1.0)
+    elif kind == "point":
+        light = point_light((0.7, -0.4, 5.0))
+    else:
+        light = pv.Light(position=(4, 2, 8), focal_point=(0, 0, 0))
+    plotter.add_light(light)
+    plotter.camera_position = [(8, -11, 9), (0, 0, 0.5), (0, 0, 1)]
+    return plotter, light, meshes
+
+
+def _frames(kind, options, threshold, monkeypatch):
+    """Draw the scene's five frames; return the images and the renderer's batch keeper."""
+    for module in (caster_batch, buffers, actor_buffers):
+        monkeypatch.setattr(module, "MIN_CASTERS", threshold)
+    plotter, light, meshes = _scene(kind)
+    plotter.shadows.enable(lights=[light], **options)
+    images = [draw(plotter)]
+    x, y, z = light.GetPosition()
+    light.SetPosition(x + 0.4, y - 0.3, z)
+    images.append(draw(plotter))
+    plotter.renderer.actors[list(plotter.renderer.actors)[3]].AddPosition(0.3, 0.2, 0.0)
+    images.append(draw(plotter))
+    meshes[7].points = meshes[7].points + np.array([0.0, 0.0, 0.4])
+    images.append(draw(plotter))
+    meshes[1].copy_from(pv.Sphere(radius=0.7, center=meshes[1].center, theta_resolution=12))
+    images.append(draw(plotter))
+    keeper = plotter.shadows._renderers[0]._buffers.batches
+    return plotter, light, images, keeper
+
+
+CASES = [
+    ("spot", {}),
+    ("point", {"passes": "single"}),
+    ("point", {"passes": "six"}),
+    ("directional", {}),
+    ("spot", {"cull_front": True}),
+    ("point", {"cull_front": True}),
+]
+
+
+@pytest.mark.parametrize(("kind", "options"), CASES)
+def test_batched_casters_draw_the_same_depths_as_one_by_one(kind, options, monkeypatch):
+    _, _, alone, unused = _frames(kind, options, 10**9, monkeypatch)
+    assert unused.builds == 0
+    plotter, light, batched, keeper = _frames(kind, options, 16, monkeypatch)
+    for frame, (one, other) in enumerate(zip(alone, batched, strict=True)):
+        assert np.array_equal(one, other), f"frame {frame}: {(one != other).any(-1).sum()} px"
+    # the frames differ from one another: each change was drawn
+    assert all(not np.array_equal(a, b) for a, b in itertools.pairwise(batched))
+    # built once, patched in place for new points, built again for a new mesh
+    assert keeper.builds == 2
+    assert plotter.shadows.measure(light).misclassified <= 0.005
+
+
+def test_a_pass_submits_a_chunk_and_a_draw_per_side(monkeypatch):
+    plotter, light, _, keeper = _frames("spot", {}, 16, monkeypatch)
+    batch = keeper._kept[1]
+    casters = GRID * GRID + 2
+    assert len(batch) == casters
+    before = batch.calls
+    light.SetPosition(*(np.array(light.GetPosition()) + 0.1))
+    draw(plotter)
+    (report,) = plotter.shadows.last_frame.lights[0].passes
+    assert report.status == "run" and report.detail.startswith(f"{casters} of {casters}")
+    assert batch.calls - before == 2  # one chunk of matrices, one multi-draw
+
+
+@pytest.mark.parametrize("kind", ["spot", "point"])
+def test_chunks_of_few_rows_draw_the_same_depths(kind, monkeypatch):
+    _, _, alone, _ = _frames(kind, {"cull_front": True}, 10**9, monkeypatch)
+    monkeypatch.setattr(caster_batch, "MAX_CHUNK", 8)
+    _, _, batched, keeper = _frames(kind, {"cull_front": True}, 16, monkeypatch)
+    assert keeper._kept[1].chunk == 8
+    for frame, (one, other) in enumerate(zip(alone, batched, strict=True)):
+        assert np.array_equal(one, other), f"frame {frame}"
+
+
+def test_big_casters_are_drawn_on_their_own_beside_the_batch(monkeypatch):
+    _, _, alone, _ = _frames("spot", {}, 10**9, monkeypatch)
+    monkeypatch.setattr(caster_batch, "SMALL", 20)  # spheres (84+ triangles) alone, cubes batched
+    _, _, batched, keeper = _frames("spot", {}, 4, monkeypatch)
+    rows = keeper._kept[1].rows
+    assert 0 < (rows >= 0).sum() < len(rows)
+    for frame, (one, other) in enumerate(zip(alone, batched, strict=True)):
+        assert np.array_equal(one, other), f"frame {frame}"
