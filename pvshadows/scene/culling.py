@@ -162,11 +162,9 @@ def box_inside_frustum(box: np.ndarray, planes: np.ndarray) -> bool:
     >>> box_inside_frustum(np.array([[-5.0, -0.1, -1.0], [0.1, 0.1, -0.5]]), planes)
     False
     """
-    normals = planes[:, :3]
     box = np.asarray(box, dtype=np.float64).reshape(2, 3)
-    # each plane's distance to the corner farthest against its normal
-    distance = box[0] @ np.maximum(normals, 0.0).T + box[1] @ np.minimum(normals, 0.0).T
-    return bool(np.all(distance + planes[:, 3] >= 0.0))
+    # The corners swapped, the test meets each plane's nearest corner, not its farthest.
+    return bool(boxes_in_frustum(box[::-1], planes)[0])
 
 
 def box_in_spot(box: np.ndarray, pose: LightPose) -> bool:
