@@ -35,8 +35,9 @@ from pvshadows.model.plan import (
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.reach import ReachCache
+from pvshadows.pipeline.sight import ViewSight
 from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
-from pvshadows.scene.culling import box_corners, box_inside_frustum, boxes_in_frustum
+from pvshadows.scene.culling import box_corners
 from pvshadows.scene.light_kit import unshadowed_reason
 from pvshadows.scene.lights import (
     LightKind,
@@ -108,43 +109,44 @@ class PlanMemo:
         Frames that planned some light again.
     planned : int
         Lights planned again, over all frames.
-    view_tests : int
-        Receivers tested one by one against the view, over all frames.
     """
 
     def __init__(self) -> None:
         self.kept = 0
         self.made = 0
         self.planned = 0
-        self.view_tests = 0
+        self._tested = 0
+        self._witnesses: dict[int, int] = {}
         self._plans: dict[int, tuple[tuple, LightPlan, int, ViewUse, object]] = {}
-        self._in_view: tuple[Snapshot, FrameView, np.ndarray] | None = None
+        self._in_view: tuple[Snapshot, FrameView, ViewSight] | None = None
 
     def forget(self) -> None:
         """Plan every light again next frame."""
         self._plans = {}
         self._in_view = None
 
-    def in_view(self, snapshot: Snapshot, view: FrameView) -> np.ndarray:
-        """Return which of the snapshot's receivers the view sees (tested when either changed).
+    @property
+    def view_tests(self) -> int:
+        """Receivers tested one by one against the view, over all frames."""
+        return self._tested + (0 if self._in_view is None else self._in_view[2].tested)
 
-        When the box round every receiver lies inside the view, each of them
-        does, and none is tested on its own (:attr:`view_tests` counts those
-        that are).
+    def in_view(self, snapshot: Snapshot, view: FrameView) -> ViewSight:
+        """Return what the view sees of the snapshot's receivers (new when either changed).
+
+        Last frame's witnesses answer first (:class:`ViewSight`).
         """
         kept = self._in_view
         if kept is None or kept[0] is not snapshot or kept[1] is not view:
-            if box_inside_frustum(snapshot.receivers_box, view.planes):
-                seen = np.ones(len(snapshot.receivers), dtype=bool)
-            else:
-                seen = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
-                self.view_tests += len(seen)
-            kept = (snapshot, view, seen)
+            self._tested += 0 if kept is None else kept[2].tested
+            sight = ViewSight(
+                snapshot.receiver_bounds, snapshot.receivers_box, view.planes, self._witnesses
+            )
+            kept = (snapshot, view, sight)
             self._in_view = kept
         return kept[2]
 
     def recall(
-        self, inputs: tuple, in_view: np.ndarray, reach: ReachCache | None = None
+        self, inputs: tuple, in_view: ViewSight, reach: ReachCache | None = None
     ) -> LightPlan | None:
         """Return a light's last plan if it was made from the same inputs, else ``None``.
 
@@ -174,7 +176,7 @@ class PlanMemo:
         del plan.notes[planned:]
         return plan
 
-    def keep(self, inputs: tuple, plan: LightPlan, use: ViewUse, in_view: np.ndarray) -> None:
+    def keep(self, inputs: tuple, plan: LightPlan, use: ViewUse, in_view: ViewSight) -> None:
         """Keep a light's plan of this frame, what it was made from and what it saw."""
         self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes), use, _view_key(use, in_view))
 
@@ -224,13 +226,13 @@ EVERY_RECEIVER = "every receiver"
 ViewUse = None | np.ndarray | str
 
 
-def _view_key(use: ViewUse, in_view: np.ndarray) -> object:
+def _view_key(use: ViewUse, in_view: ViewSight) -> object:
     """Return what a plan that looked at ``use`` of the view would see of ``in_view``."""
     if use is None:
         return None
     if isinstance(use, str):
-        return in_view.tobytes()
-    return bool(in_view.any()), bool(np.any(in_view & use))
+        return in_view.every.tobytes()
+    return in_view.sees_some(), in_view.sees_some(use)
 
 
 def plan_frame(
@@ -281,7 +283,7 @@ def plan_frame(
     lights = [collection.GetNextItem() for _ in range(collection.GetNumberOfItems())]
     view = FrameView.of(renderer) if view is None else view
     if memo is None:
-        in_view = boxes_in_frustum(snapshot.receiver_bounds, view.planes)
+        in_view = ViewSight(snapshot.receiver_bounds, snapshot.receivers_box, view.planes)
     else:
         in_view = memo.in_view(snapshot, view)
     plans = []
@@ -318,7 +320,7 @@ def plan_frame(
 class _Shared:
     """What the lights planned in one frame share, worked out once when first asked."""
 
-    def __init__(self, snapshot: Snapshot, in_view: np.ndarray) -> None:
+    def __init__(self, snapshot: Snapshot, in_view: ViewSight) -> None:
         self.snapshot = snapshot
         self.in_view = in_view
 
@@ -326,7 +328,7 @@ class _Shared:
     def seen(self) -> list[ActorState]:
         """The receivers the camera sees."""
         receivers = self.snapshot.receivers
-        return [r for r, shown in zip(receivers, self.in_view, strict=True) if shown]
+        return [r for r, shown in zip(receivers, self.in_view.every, strict=True) if shown]
 
     @cached_property
     def only_a_plane(self) -> bool:
@@ -378,12 +380,13 @@ def _plan_light(
     technique, why = _technique_for(plan.kind, settings, shared.only_a_plane)
     casters = snapshot.casters
     reached = reach.reaches(plan.key, pose, snapshot)
-    use: ViewUse = reached[snapshot.receiver_index]
-    if not np.any(shared.in_view & use):
+    reached_receivers = reached[snapshot.receiver_index]
+    use: ViewUse = reached_receivers
+    if not shared.in_view.sees_some(reached_receivers):
         plan.notes.append(
             "no receiver the camera sees is in the light's reach: it casts nothing and "
             "costs nothing"
-            if shared.in_view.any()
+            if shared.in_view.sees_some()
             else "the camera sees no receiver: the light casts nothing and costs nothing"
         )
         return plan, use

@@ -135,38 +135,6 @@ def boxes_in_frustum(boxes: np.ndarray, planes: np.ndarray) -> np.ndarray:
     return np.all(distance >= 0.0, axis=1)
 
 
-def box_inside_frustum(box: np.ndarray, planes: np.ndarray) -> bool:
-    """Return whether a world box lies wholly inside a frustum.
-
-    Parameters
-    ----------
-    box : numpy.ndarray
-        ``(2, 3)`` min/max corners.
-    planes : numpy.ndarray
-        ``(6, 4)`` frustum planes from :func:`frustum_planes`.
-
-    Returns
-    -------
-    bool
-        ``True`` when even the box's corner nearest each plane's outside is
-        on its inner side: every box within it is then inside too.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> import vtk
-    >>> from pvshadows.scene.culling import box_inside_frustum, frustum_planes
-    >>> planes = frustum_planes(vtk.vtkCamera(), 1.0)
-    >>> box_inside_frustum(np.array([[-0.1, -0.1, -1.0], [0.1, 0.1, -0.5]]), planes)
-    True
-    >>> box_inside_frustum(np.array([[-5.0, -0.1, -1.0], [0.1, 0.1, -0.5]]), planes)
-    False
-    """
-    box = np.asarray(box, dtype=np.float64).reshape(2, 3)
-    # The corners swapped, the test meets each plane's nearest corner, not its farthest.
-    return bool(boxes_in_frustum(box[::-1], planes)[0])
-
-
 def box_in_spot(box: np.ndarray, pose: LightPose) -> bool:
     """Return whether a world box may touch a spot light's cone (conservative).
 
