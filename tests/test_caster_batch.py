@@ -126,3 +126,16 @@ def test_big_casters_are_drawn_on_their_own_beside_the_batch(monkeypatch):
     assert 0 < (rows >= 0).sum() < len(rows)
     for frame, (one, other) in enumerate(zip(alone, batched, strict=True)):
         assert np.array_equal(one, other), f"frame {frame}"
+
+
+def test_the_batch_is_released_when_few_casters_are_left():
+    plotter, light, _ = _scene("spot")
+    plotter.shadows.enable(lights=[light])
+    draw(plotter)
+    keeper = plotter.shadows._renderers[0]._buffers.batches
+    assert keeper._kept is not None
+    for name in list(plotter.renderer.actors)[1:20]:
+        plotter.remove_actor(name)
+    draw(plotter)
+    assert keeper._kept is None
+    assert plotter.shadows.measure(light).misclassified <= 0.005

@@ -92,6 +92,7 @@ class ActorBuffers:
             below :data:`~pvshadows.gl.caster_batch.MIN_CASTERS` casters.
         """
         if len(snapshot.casters) < MIN_CASTERS:
+            self.batches.release()
             return None
         return self.batches.of(snapshot)
 

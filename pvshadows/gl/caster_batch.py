@@ -336,7 +336,7 @@ class BatchKeeper:
         return batch
 
     def release(self) -> None:
-        """Delete the batch."""
+        """Delete the batch, if any."""
         if self._kept is not None:
             self._kept[1].release()
             self._kept = None
