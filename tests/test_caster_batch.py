@@ -14,8 +14,6 @@ import numpy as np
 import pytest
 import pyvista as pv
 
-import pvshadows.gl.actor_buffers as actor_buffers
-import pvshadows.gl.buffers as buffers
 import pvshadows.gl.caster_batch as caster_batch
 from conftest import draw, point_light
 from pvshadows.tools.scenes import spot_light
@@ -53,8 +51,7 @@ def _scene(kind):
 
 def _frames(kind, options, threshold, monkeypatch):
     """Draw the scene's five frames; return the images and the renderer's batch keeper."""
-    for module in (caster_batch, buffers, actor_buffers):
-        monkeypatch.setattr(module, "MIN_CASTERS", threshold)
+    monkeypatch.setattr(caster_batch, "MIN_CASTERS", threshold)
     plotter, light, meshes = _scene(kind)
     plotter.shadows.enable(lights=[light], **options)
     images = [draw(plotter)]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.buffers import TriangleBuffers
-from pvshadows.gl.caster_batch import MIN_CASTERS, BatchKeeper, CasterBatch
+from pvshadows.gl.caster_batch import BatchKeeper, CasterBatch, worth_batching
 from pvshadows.scene.snapshot import CASTERS, ActorState, Snapshot
 
 
@@ -91,7 +91,7 @@ class ActorBuffers:
             See :class:`~pvshadows.gl.caster_batch.BatchKeeper`; ``None``
             below :data:`~pvshadows.gl.caster_batch.MIN_CASTERS` casters.
         """
-        if len(snapshot.casters) < MIN_CASTERS:
+        if not worth_batching(len(snapshot.casters)):
             self.batches.release()
             return None
         return self.batches.of(snapshot)

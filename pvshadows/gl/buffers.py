@@ -7,14 +7,11 @@ adjacency indices, and an attribute-less array for full-screen passes.
 from __future__ import annotations
 
 import ctypes
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
-from pvshadows.gl.caster_batch import MIN_CASTERS, CasterBatch
 from pvshadows.gl.raw_calls import raw_calls
 
 #: ``GL_UNSIGNED_INT``, the type of every index buffer here.
@@ -26,7 +23,7 @@ def _pointer(array: np.ndarray) -> ctypes.c_void_p | None:
 
 
 class IndexedBuffers:
-    """Vertices (float32, 3 or 4 components) and one uint32 index buffer on the GPU.
+    """Vertices (float32, 3 or 4 components), one uint32 index buffer and, optionally, an int each.
 
     Parameters
     ----------
@@ -36,10 +33,17 @@ class IndexedBuffers:
         ``(n, k)`` positions, ``k`` 3 or 4, already in a local frame.
     indices : numpy.ndarray
         Flat indices into ``vertices``.
+    rows : numpy.ndarray, optional
+        ``(n,)`` an integer per vertex, read as an ``int`` attribute (a
+        caster's row in :class:`~pvshadows.gl.caster_batch.CasterBatch`).
     """
 
     def __init__(
-        self, window: vtk.vtkOpenGLRenderWindow, vertices: np.ndarray, indices: np.ndarray
+        self,
+        window: vtk.vtkOpenGLRenderWindow,
+        vertices: np.ndarray,
+        indices: np.ndarray,
+        rows: np.ndarray | None = None,
     ) -> None:
         self._gl = gl = opengl_for(window)
         data = np.ascontiguousarray(vertices, dtype=np.float32)
@@ -47,23 +51,72 @@ class IndexedBuffers:
         self.components = int(data.shape[1])
         self.n_indices = int(index.size)
         self._vertices, self._indices = (int(b) for b in gl.glGenBuffers(2))
-        self._arrays: dict[int, int] = {}
-        gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._vertices)
-        # The raw entry point and a pointer spare PyOpenGL's array conversion (ms per call).
-        from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData
+        self._rows = 0 if rows is None else int(gl.glGenBuffers(1))
+        self._arrays: dict[object, int] = {}
+        self._fill(self._vertices, data)
+        self._fill(self._indices, index)
+        if rows is not None:
+            self._fill(self._rows, np.ascontiguousarray(rows, dtype=np.int32))
 
-        glBufferData(gl.GL_ARRAY_BUFFER, max(data.nbytes, 4), _pointer(data), gl.GL_STATIC_DRAW)
-        gl.glBindBuffer(gl.GL_ARRAY_BUFFER, 0)
-        gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, self._indices)
-        glBufferData(
-            gl.GL_ELEMENT_ARRAY_BUFFER, max(index.nbytes, 4), _pointer(index), gl.GL_STATIC_DRAW
-        )
-        gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, 0)
+    def _fill(self, buffer: int, data: np.ndarray, start: int | None = None) -> None:
+        """Fill a buffer with ``data``, or write ``data`` from byte ``start`` on.
 
-    def vertex_array(self, location: int) -> int:
-        """Return the vertex array feeding these buffers to attribute ``location`` (made once)."""
+        Bound as ``GL_COPY_WRITE_BUFFER``, a target no vertex array keeps (an
+        index buffer bound as ``GL_ELEMENT_ARRAY_BUFFER`` joins whatever
+        vertex array is bound). The raw entry points and a pointer spare
+        PyOpenGL's array conversion (ms per call).
+        """
+        from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData, glBufferSubData
+
         gl = self._gl
-        if location not in self._arrays:
+        target = gl.GL_COPY_WRITE_BUFFER
+        gl.glBindBuffer(target, buffer)
+        if start is None:
+            glBufferData(target, max(data.nbytes, 4), _pointer(data), gl.GL_STATIC_DRAW)
+        else:
+            glBufferSubData(target, start, data.nbytes, _pointer(data))
+        gl.glBindBuffer(target, 0)
+
+    def write(
+        self, first_vertex: int, vertices: np.ndarray, first_index: int, indices: np.ndarray | None
+    ) -> None:
+        """Write over a range of the vertices and, when given, of the indices.
+
+        Parameters
+        ----------
+        first_vertex : int
+            The first vertex written.
+        vertices : numpy.ndarray
+            ``(m, k)`` positions.
+        first_index : int
+            The first index written.
+        indices : numpy.ndarray or None
+            Flat indices (into all the vertices), or ``None`` to keep them.
+        """
+        data = np.ascontiguousarray(vertices, dtype=np.float32)
+        self._fill(self._vertices, data, 4 * self.components * first_vertex)
+        if indices is not None:
+            index = np.ascontiguousarray(indices, dtype=np.uint32).ravel()
+            self._fill(self._indices, index, 4 * first_index)
+
+    def vertex_array(self, location: int, row: int = -1) -> int:
+        """Return the vertex array feeding these buffers to attribute ``location`` (made once).
+
+        Parameters
+        ----------
+        location : int
+            The positions' attribute.
+        row : int, default: -1
+            The ``int`` attribute that reads the rows given at creation, or -1.
+
+        Returns
+        -------
+        int
+            The vertex array's name.
+        """
+        key: object = location if row < 0 else (location, row)
+        if key not in self._arrays:
+            gl = self._gl
             array = int(gl.glGenVertexArrays(1))
             gl.glBindVertexArray(array)
             gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._vertices)
@@ -71,11 +124,15 @@ class IndexedBuffers:
                 location, self.components, gl.GL_FLOAT, gl.GL_FALSE, 0, ctypes.c_void_p(0)
             )
             gl.glEnableVertexAttribArray(location)
+            if row >= 0:
+                gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._rows)
+                gl.glVertexAttribIPointer(row, 1, gl.GL_INT, 0, ctypes.c_void_p(0))
+                gl.glEnableVertexAttribArray(row)
             gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, self._indices)
             gl.glBindVertexArray(0)
             gl.glBindBuffer(gl.GL_ARRAY_BUFFER, 0)
-            self._arrays[location] = array
-        return self._arrays[location]
+            self._arrays[key] = array
+        return self._arrays[key]
 
     def draw(self, program: vtk.vtkShaderProgram, mode: int, first: int, count: int) -> None:
         """Draw ``count`` indices from index ``first`` with a bound program reading ``position``.
@@ -103,8 +160,9 @@ class IndexedBuffers:
             gl.glDeleteVertexArrays(len(self._arrays), list(self._arrays.values()))
             self._arrays.clear()
         if self._vertices:
-            gl.glDeleteBuffers(2, [self._vertices, self._indices])
-            self._vertices = self._indices = 0
+            names = [self._vertices, self._indices] + ([self._rows] if self._rows else [])
+            gl.glDeleteBuffers(len(names), names)
+            self._vertices = self._indices = self._rows = 0
 
 
 class TriangleBuffers(IndexedBuffers):
@@ -129,143 +187,6 @@ class TriangleBuffers(IndexedBuffers):
             The bound program.
         """
         self.draw(program, self._gl.GL_TRIANGLES, 0, self.n_indices)
-
-
-@dataclass(frozen=True)
-class CasterDraws:
-    """The casters one pass draws, side by side: one object per pass, not one per caster.
-
-    Attributes
-    ----------
-    buffers : sequence of IndexedBuffers
-        Each caster's triangles on the GPU.
-    model_to_light : numpy.ndarray
-        ``(n, 4, 4)`` float64: each caster's buffer coordinates to the light's space.
-    culls : sequence of {"front", "back", None}
-        Each caster's side of its triangles not to draw.
-    batch : CasterBatch or None
-        The snapshot's small casters in one vertex array, when there is one.
-    rows : numpy.ndarray or None
-        ``(n,)`` each caster's row in ``batch``, -1 for one drawn on its own.
-    """
-
-    buffers: Sequence[IndexedBuffers]
-    model_to_light: np.ndarray
-    culls: Sequence[str | None]
-    batch: CasterBatch | None = None
-    rows: np.ndarray | None = None
-
-    def __len__(self) -> int:
-        return len(self.buffers)
-
-    def subset(self, keep: np.ndarray) -> CasterDraws:
-        """Return the casters where ``keep`` (an ``(n,)`` bool array) is true.
-
-        Parameters
-        ----------
-        keep : numpy.ndarray
-            Which casters to keep.
-
-        Returns
-        -------
-        CasterDraws
-            Those casters, in the same order.
-        """
-        chosen = np.flatnonzero(keep).tolist()
-        return CasterDraws(
-            [self.buffers[i] for i in chosen],
-            self.model_to_light[chosen],
-            [self.culls[i] for i in chosen],
-            self.batch,
-            None if self.rows is None else self.rows[chosen],
-        )
-
-    def batched(self) -> np.ndarray:
-        """Return which casters a pass draws through :attr:`batch`.
-
-        Returns
-        -------
-        numpy.ndarray
-            ``(n,)`` bool: the batch's casters, when the pass draws at least
-            :data:`~pvshadows.gl.caster_batch.MIN_CASTERS` of them; else none.
-        """
-        if self.batch is None or self.rows is None:
-            return np.zeros(len(self), dtype=bool)
-        inside = self.rows >= 0
-        return inside if int(inside.sum()) >= MIN_CASTERS else np.zeros(len(self), dtype=bool)
-
-
-def draw_casters(
-    programs: Callable[[bool], vtk.vtkShaderProgram],
-    casters: CasterDraws,
-    cull: Callable[[str | None], None],
-) -> None:
-    """Draw casters' triangles: the batched ones in a few calls, the others one by one.
-
-    Parameters
-    ----------
-    programs : callable
-        Binds and returns the pass's program, given whether it draws the
-        batch (built with ``BATCHED``) or casters one by one (reading
-        ``uniform mat4 modelToLight``), its other uniforms set.
-    casters : CasterDraws
-        What to draw: buffers, matrices and sides to cull.
-    cull : callable
-        Sets the side to cull (:class:`pvshadows.passes.gl_state.FaceCulling`).
-    """
-    if not len(casters):
-        return
-    batched = casters.batched()
-    every, some = bool(batched.all()), bool(batched.any())
-    if not every:
-        draw_one_by_one(programs(False), casters.subset(~batched) if some else casters, cull)
-    if some:
-        part = casters if every else casters.subset(batched)
-        assert part.batch is not None and part.rows is not None  # batched() said so
-        part.batch.draw(programs(True), part.rows, part.model_to_light, part.culls, cull)
-
-
-def draw_one_by_one(
-    program: vtk.vtkShaderProgram,
-    casters: CasterDraws,
-    cull: Callable[[str | None], None],
-) -> None:
-    """Draw casters' triangles, each with its own ``mat4`` uniform, in few Python calls.
-
-    Every caster's matrix is converted to float32 columns in one numpy call
-    and set by location with the raw ``glUniformMatrix4fv``; each caster then
-    costs that call, its vertex array's binding, its draw and a culling
-    call when its side differs from the last caster's. Drawing casters one
-    ``vtkShaderProgram.SetUniformMatrix4x4v`` at a time cost about three
-    times as much.
-
-    Parameters
-    ----------
-    program : vtk.vtkShaderProgram
-        The bound program: ``in vec3 position`` and ``uniform mat4 modelToLight``.
-    casters : CasterDraws
-        What to draw: buffers, matrices and sides to cull.
-    cull : callable
-        Sets the side to cull (:class:`pvshadows.passes.gl_state.FaceCulling`).
-    """
-    gl = raw_calls()
-    location = program.FindUniform("modelToLight")
-    position = program.FindAttributeArray("position")
-    columns = np.ascontiguousarray(casters.model_to_light.transpose(0, 2, 1), dtype=np.float32)
-    base = columns.ctypes.data
-    set_matrix, bind, draw = gl.matrix, gl.bind, gl.draw
-    triangles = 0x0004  # GL_TRIANGLES
-    side: str | bool | None = False  # not a side: the first caster sets culling
-    for i, (buffers, culled) in enumerate(zip(casters.buffers, casters.culls, strict=True)):
-        if not buffers.n_indices:
-            continue
-        set_matrix(location, 1, 0, base + 64 * i)
-        if culled != side:
-            cull(culled)
-            side = culled
-        bind(buffers.vertex_array(position))
-        draw(triangles, buffers.n_indices, _UNSIGNED_INT, None)
-    bind(0)
 
 
 class EmptyArray:

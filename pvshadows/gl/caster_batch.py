@@ -19,13 +19,14 @@ of the casters builds the batch again.
 
 from __future__ import annotations
 
-import ctypes
 from collections.abc import Callable, Sequence
+from itertools import compress
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.buffers import IndexedBuffers
 from pvshadows.gl.raw_calls import raw_calls
 from pvshadows.scene.snapshot import CASTERS, ActorState, Snapshot
 
@@ -70,6 +71,28 @@ def chunk_rows(window: vtk.vtkOpenGLRenderWindow) -> int:
     return int(min(MAX_CHUNK, max(8, (components - 64) // 16)))
 
 
+def worth_batching(casters: int) -> bool:
+    """Return whether so many casters are drawn through a batch (:data:`MIN_CASTERS` or more).
+
+    Parameters
+    ----------
+    casters : int
+        Casters of a scene, or of a pass, that the batch could hold.
+
+    Returns
+    -------
+    bool
+        ``True`` from :data:`MIN_CASTERS` on.
+
+    Examples
+    --------
+    >>> from pvshadows.gl.caster_batch import worth_batching
+    >>> worth_batching(4), worth_batching(500)
+    (False, True)
+    """
+    return casters >= MIN_CASTERS
+
+
 def _batched(state: ActorState) -> bool:
     return 0 < state.triangles.n_triangles <= SMALL
 
@@ -95,54 +118,33 @@ class CasterBatch:
     """
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow, casters: list[ActorState]) -> None:
-        self._gl = gl = opengl_for(window)
         self.chunk = chunk_rows(window)
         self.calls = 0
         batched = np.fromiter(map(_batched, casters), bool, len(casters))
         self.rows = np.where(batched, np.cumsum(batched) - 1, -1)
-        members = [state for state in casters if _batched(state)]
-        self._triangles = [state.triangles for state in members]
+        self._triangles = [state.triangles for state in compress(casters, batched.tolist())]
         vertex_counts = np.array([len(t.points) for t in self._triangles], dtype=np.int64)
         index_counts = np.array([t.triangles.size for t in self._triangles], dtype=np.int64)
         self._first_vertex = np.cumsum(vertex_counts) - vertex_counts
-        first_index = np.cumsum(index_counts) - index_counts
+        self._first_index = np.cumsum(index_counts) - index_counts
         #: Each batch row's index count, and where its indices start (bytes), for the draws.
         self._counts = index_counts.astype(np.int32)
-        self._offsets = (4 * first_index).astype(np.uintp)
-        points = [t.points for t in self._triangles]
+        self._offsets = (4 * self._first_index).astype(np.uintp)
         starts = self._first_vertex.tolist()
+        points = [t.points for t in self._triangles]
         indices = [
             t.triangles.ravel() + first for t, first in zip(self._triangles, starts, strict=True)
         ]
-        owners = np.repeat(np.arange(len(members), dtype=np.int32), vertex_counts)
-        self._positions, self._indices, self._owners = (int(b) for b in gl.glGenBuffers(3))
-        self._upload(self._positions, _stacked(points, np.float32, (0, 3)))
-        self._upload(self._indices, _stacked(indices, np.uint32, (0,)))
-        self._upload(self._owners, owners)
-        self._arrays: dict[tuple[int, int], int] = {}
+        owners = np.repeat(np.arange(len(self._triangles), dtype=np.int32), vertex_counts)
+        self._buffers = IndexedBuffers(
+            window,
+            _stacked(points, np.float32, (0, 3)),
+            _stacked(indices, np.uint32, (0,)),
+            owners,
+        )
 
     def __len__(self) -> int:
         return len(self._triangles)
-
-    def _upload(self, buffer: int, data: np.ndarray, start: int | None = None) -> None:
-        """Fill a buffer with ``data``, or write it from byte ``start`` on.
-
-        Bound as ``GL_COPY_WRITE_BUFFER``, a target no vertex array keeps: an
-        index buffer bound as such would become part of whatever vertex array
-        is bound.
-        """
-        from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData, glBufferSubData
-
-        gl = self._gl
-        data = np.ascontiguousarray(data)
-        target = gl.GL_COPY_WRITE_BUFFER
-        gl.glBindBuffer(target, buffer)
-        pointer = ctypes.c_void_p(data.ctypes.data) if data.size else None
-        if start is None:
-            glBufferData(target, max(data.nbytes, 4), pointer, gl.GL_STATIC_DRAW)
-        else:
-            glBufferSubData(target, start, data.nbytes, pointer)
-        gl.glBindBuffer(target, 0)
 
     def refresh(self, casters: list[ActorState], changed: Sequence[tuple[int, ActorState]]) -> bool:
         """Take the new states of some casters; return ``False`` when the batch must be built again.
@@ -175,32 +177,12 @@ class CasterBatch:
                 continue
             if len(new.points) != len(old.points) or new.triangles.size != old.triangles.size:
                 return False
-            points = new.points.astype(np.float32)
-            self._upload(self._positions, points, 12 * int(self._first_vertex[at]))
-            if not np.array_equal(new.triangles, old.triangles):
-                indices = (new.triangles.ravel() + self._first_vertex[at]).astype(np.uint32)
-                self._upload(self._indices, indices, int(self._offsets[at]))
+            first = int(self._first_vertex[at])
+            same = np.array_equal(new.triangles, old.triangles)
+            indices = None if same else new.triangles.ravel() + first
+            self._buffers.write(first, new.points, int(self._first_index[at]), indices)
             self._triangles[at] = new
         return True
-
-    def vertex_array(self, position: int, row: int) -> int:
-        """Return the vertex array feeding attributes ``position`` and ``row`` (made once)."""
-        key = (position, row)
-        if key not in self._arrays:
-            gl = self._gl
-            array = int(gl.glGenVertexArrays(1))
-            gl.glBindVertexArray(array)
-            gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._positions)
-            gl.glVertexAttribPointer(position, 3, gl.GL_FLOAT, gl.GL_FALSE, 0, ctypes.c_void_p(0))
-            gl.glEnableVertexAttribArray(position)
-            gl.glBindBuffer(gl.GL_ARRAY_BUFFER, self._owners)
-            gl.glVertexAttribIPointer(row, 1, gl.GL_INT, 0, ctypes.c_void_p(0))
-            gl.glEnableVertexAttribArray(row)
-            gl.glBindBuffer(gl.GL_ELEMENT_ARRAY_BUFFER, self._indices)
-            gl.glBindVertexArray(0)
-            gl.glBindBuffer(gl.GL_ARRAY_BUFFER, 0)
-            self._arrays[key] = array
-        return self._arrays[key]
 
     def draw(
         self,
@@ -243,7 +225,7 @@ class CasterBatch:
         matrices = program.FindUniform("modelToLights")
         base_location = program.FindUniform("rowBase")
         position, row = (program.FindAttributeArray(n) for n in ("position", "casterRow"))
-        gl.bind(self.vertex_array(position, row))
+        gl.bind(self._buffers.vertex_array(position, row))
         starts = np.searchsorted(rows, np.arange(0, len(self), chunk))
         ends = np.append(starts[1:], len(rows))
         counts, offsets = self._counts, self._offsets
@@ -274,13 +256,7 @@ class CasterBatch:
 
     def release(self) -> None:
         """Delete the buffers and vertex arrays (the context must be current)."""
-        gl = self._gl
-        if self._arrays:
-            gl.glDeleteVertexArrays(len(self._arrays), list(self._arrays.values()))
-            self._arrays.clear()
-        if self._positions:
-            gl.glDeleteBuffers(3, [self._positions, self._indices, self._owners])
-            self._positions = self._indices = self._owners = 0
+        self._buffers.release()
 
 
 def _stacked(parts: list[np.ndarray], dtype: type, empty: tuple[int, ...]) -> np.ndarray:

@@ -10,7 +10,7 @@ from pvshadows.geometry.transforms import (
     cube_face_projections,
     faces_touching_boxes,
 )
-from pvshadows.gl.buffers import CasterDraws, draw_casters
+from pvshadows.gl.caster_draws import CasterDraws, draw_casters
 from pvshadows.gl.cube_array import CubeSlot
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthCube

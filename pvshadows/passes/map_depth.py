@@ -6,7 +6,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import column_major
-from pvshadows.gl.buffers import CasterDraws, draw_casters
+from pvshadows.gl.caster_draws import CasterDraws, draw_casters
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthMap
 from pvshadows.gl.timing import PassTimer

@@ -9,7 +9,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
-from pvshadows.gl.buffers import CasterDraws
+from pvshadows.gl.caster_draws import CasterDraws
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import Cast
 from pvshadows.model.settings import ShadowSettings

@@ -1,0 +1,153 @@
+"""What a depth pass draws of its casters, and the drawing: batched, or one caster at a time."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from pvshadows import _vtk as vtk
+from pvshadows.gl.buffers import IndexedBuffers
+from pvshadows.gl.caster_batch import CasterBatch, worth_batching
+from pvshadows.gl.raw_calls import raw_calls
+
+#: ``GL_UNSIGNED_INT``, the type of every index buffer.
+_UNSIGNED_INT = 0x1405
+
+
+@dataclass(frozen=True)
+class CasterDraws:
+    """The casters one pass draws, side by side: one object per pass, not one per caster.
+
+    Attributes
+    ----------
+    buffers : sequence of IndexedBuffers
+        Each caster's triangles on the GPU.
+    model_to_light : numpy.ndarray
+        ``(n, 4, 4)`` float64: each caster's buffer coordinates to the light's space.
+    culls : sequence of {"front", "back", None}
+        Each caster's side of its triangles not to draw.
+    batch : CasterBatch or None
+        The snapshot's small casters in one vertex array, when there is one.
+    rows : numpy.ndarray or None
+        ``(n,)`` each caster's row in ``batch``, -1 for one drawn on its own.
+    """
+
+    buffers: Sequence[IndexedBuffers]
+    model_to_light: np.ndarray
+    culls: Sequence[str | None]
+    batch: CasterBatch | None = None
+    rows: np.ndarray | None = None
+
+    def __len__(self) -> int:
+        return len(self.buffers)
+
+    def subset(self, keep: np.ndarray) -> CasterDraws:
+        """Return the casters where ``keep`` (an ``(n,)`` bool array) is true.
+
+        Parameters
+        ----------
+        keep : numpy.ndarray
+            Which casters to keep.
+
+        Returns
+        -------
+        CasterDraws
+            Those casters, in the same order.
+        """
+        chosen = np.flatnonzero(keep).tolist()
+        return CasterDraws(
+            [self.buffers[i] for i in chosen],
+            self.model_to_light[chosen],
+            [self.culls[i] for i in chosen],
+            self.batch,
+            None if self.rows is None else self.rows[chosen],
+        )
+
+    def batched(self) -> np.ndarray:
+        """Return which casters a pass draws through :attr:`batch`.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n,)`` bool: the batch's casters, when the pass draws at least
+            :data:`~pvshadows.gl.caster_batch.MIN_CASTERS` of them; else none.
+        """
+        if self.batch is None or self.rows is None:
+            return np.zeros(len(self), dtype=bool)
+        inside = self.rows >= 0
+        return inside if worth_batching(int(inside.sum())) else np.zeros(len(self), dtype=bool)
+
+
+def draw_casters(
+    programs: Callable[[bool], vtk.vtkShaderProgram],
+    casters: CasterDraws,
+    cull: Callable[[str | None], None],
+) -> None:
+    """Draw casters' triangles: the batched ones in a few calls, the others one by one.
+
+    Parameters
+    ----------
+    programs : callable
+        Binds and returns the pass's program, given whether it draws the
+        batch (built with ``BATCHED``) or casters one by one (reading
+        ``uniform mat4 modelToLight``), its other uniforms set.
+    casters : CasterDraws
+        What to draw: buffers, matrices and sides to cull.
+    cull : callable
+        Sets the side to cull (:class:`pvshadows.passes.gl_state.FaceCulling`).
+    """
+    if not len(casters):
+        return
+    batched = casters.batched()
+    every, some = bool(batched.all()), bool(batched.any())
+    if not every:
+        draw_one_by_one(programs(False), casters.subset(~batched) if some else casters, cull)
+    if some:
+        part = casters if every else casters.subset(batched)
+        assert part.batch is not None and part.rows is not None  # batched() said so
+        part.batch.draw(programs(True), part.rows, part.model_to_light, part.culls, cull)
+
+
+def draw_one_by_one(
+    program: vtk.vtkShaderProgram,
+    casters: CasterDraws,
+    cull: Callable[[str | None], None],
+) -> None:
+    """Draw casters' triangles, each with its own ``mat4`` uniform, in few Python calls.
+
+    Every caster's matrix is converted to float32 columns in one numpy call
+    and set by location with the raw ``glUniformMatrix4fv``; each caster then
+    costs that call, its vertex array's binding, its draw and a culling
+    call when its side differs from the last caster's. Drawing casters one
+    ``vtkShaderProgram.SetUniformMatrix4x4v`` at a time cost about three
+    times as much.
+
+    Parameters
+    ----------
+    program : vtk.vtkShaderProgram
+        The bound program: ``in vec3 position`` and ``uniform mat4 modelToLight``.
+    casters : CasterDraws
+        What to draw: buffers, matrices and sides to cull.
+    cull : callable
+        Sets the side to cull (:class:`pvshadows.passes.gl_state.FaceCulling`).
+    """
+    gl = raw_calls()
+    location = program.FindUniform("modelToLight")
+    position = program.FindAttributeArray("position")
+    columns = np.ascontiguousarray(casters.model_to_light.transpose(0, 2, 1), dtype=np.float32)
+    base = columns.ctypes.data
+    set_matrix, bind, draw = gl.matrix, gl.bind, gl.draw
+    triangles = 0x0004  # GL_TRIANGLES
+    side: str | bool | None = False  # not a side: the first caster sets culling
+    for i, (buffers, culled) in enumerate(zip(casters.buffers, casters.culls, strict=True)):
+        if not buffers.n_indices:
+            continue
+        set_matrix(location, 1, 0, base + 64 * i)
+        if culled != side:
+            cull(culled)
+            side = culled
+        bind(buffers.vertex_array(position))
+        draw(triangles, buffers.n_indices, _UNSIGNED_INT, None)
+    bind(0)
