@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from pvshadows import _vtk as vtk
@@ -105,22 +107,28 @@ class CubeDepthPass:
             msg = f"the cube pass draws passes='single' or 'six', not {passes!r} (planned?)"
             raise ValueError(msg)
         face_mask = int(np.bitwise_or.reduce(face_masks, initial=0))
-        projections = cube_face_projections(far * 1e-4, far)
+        projections = column_major(cube_face_projections(far * 1e-4, far))
         records: list[PassReport] = []
-        face = -1  # the face a pass of six draws; -1: every face in one draw
+        chunk = 0 if casters.batch is None else casters.batch.chunk
 
-        def program(batched: bool) -> vtk.vtkShaderProgram:
-            rows = casters.batch.chunk if batched and casters.batch is not None else 0
-            chosen = self._program(passes, rows)
-            bind_program(self._window, chosen)
-            chosen.SetUniformf("invFar", 1.0 / far)
-            if face < 0:
-                chosen.SetUniformMatrix4x4v("faceProjection", 6, column_major(projections))
-                chosen.SetUniformi("faceMask", face_mask)
-                chosen.SetUniformi("layerBase", cube.layer_base)
-            else:
-                chosen.SetUniformMatrix4x4v("faceProjection", 1, column_major(projections[face]))
-            return chosen
+        def programs(face: int) -> Callable[[bool], vtk.vtkShaderProgram]:
+            """Bind a program for one face (-1: every face in one draw), its uniforms set."""
+
+            def program(batched: bool) -> vtk.vtkShaderProgram:
+                chosen = self._program(passes, chunk if batched else 0)
+                bind_program(self._window, chosen)
+                chosen.SetUniformf("invFar", 1.0 / far)
+                if face < 0:
+                    chosen.SetUniformMatrix4x4v("faceProjection", 6, projections)
+                    chosen.SetUniformi("faceMask", face_mask)
+                    chosen.SetUniformi("layerBase", cube.layer_base)
+                else:
+                    chosen.SetUniformMatrix4x4v(
+                        "faceProjection", 1, projections[16 * face : 16 * face + 16]
+                    )
+                return chosen
+
+            return program
 
         with depth_only_state(self._window):
             cull = FaceCulling(self._window)
@@ -131,7 +139,7 @@ class CubeDepthPass:
                 records.append(record)
                 with timer.measure(record):
                     cube.bind_cleared()
-                    draw_casters(program, casters, cull)
+                    draw_casters(programs(-1), casters, cull)
             else:
                 for face in range(6):
                     drawn = casters.subset(face_masks & (1 << face) != 0)
@@ -146,7 +154,7 @@ class CubeDepthPass:
                             )
                             continue
                         record.detail = f"{len(drawn)} of {len(casters)} casters"
-                        draw_casters(program, drawn, cull)
+                        draw_casters(programs(face), drawn, cull)
         return records
 
     def release(self) -> None:
