@@ -28,6 +28,9 @@ layout(std140) uniform pvsFrame
   // the VTK index of the light whose visibility a probe frame shows; -1 in a
   // normal frame
   int pvsProbeLight;
+  // always 0: added to a loop's count, it keeps the compiler from unrolling
+  // the loop (shadow_group.glsl)
+  int pvsLoopZero;
   // the renderer's viewport in the window, in pixels: x, y its origin, z, w its
   // size (where screen masks are read)
   vec4 pvsViewport;

@@ -35,8 +35,9 @@
 //
 //   PVS_GROUP_LOOP           defined for maps that are layers of one texture (cube
 //                            arrays): the lights are looked up in one loop over
-//                            PVS_GROUP_COUNT, a uniform int, with one sampler each
-//                            (PVS_GROUP_DEPTH, ... are then not arrays), so each
+//                            PVS_GROUP_COUNT, a count the compiler cannot fold,
+//                            with one sampler each (PVS_GROUP_DEPTH, ... are
+//                            then not arrays), so each
 //                            filter is in the shader once whatever the number of lights
 //
 // The macros are on one line each: GLSL 1.50 has no line continuation.

@@ -74,9 +74,11 @@ def test_a_fault_whose_clean_up_fails_stays_inside_the_observer(small, monkeypat
     pl.shadows.enable(filter="hard")
     draw(pl)
     monkeypatch.setattr(CubemapTechnique, "activate", _broken)
-    monkeypatch.setattr(CubemapTechnique, "deactivate", _broken)
+    monkeypatch.setattr(CubemapTechnique, "end_frame", _broken)
     monkeypatch.setattr(CubemapTechnique, "release", _broken)
-    with pytest.warns(UserWarning, match=r"clean-up also failed: deactivating CubemapTechnique"):
+    with pytest.warns(
+        UserWarning, match=r"clean-up also failed: ending the frame of CubemapTechnique"
+    ):
         draw(pl)
     assert _shader_edits(small) == [(0, 0)] * 4
     assert "Traceback" not in capfd.readouterr().err
@@ -86,7 +88,7 @@ def test_a_fault_whose_clean_up_fails_stays_inside_the_observer(small, monkeypat
 def test_a_fault_at_the_end_of_the_frame_is_caught(small, monkeypatch, capfd):
     pl = small.plotter
     pl.shadows.enable(filter="hard")
-    monkeypatch.setattr(CubemapTechnique, "deactivate", _broken)
+    monkeypatch.setattr(CubemapTechnique, "end_frame", _broken)
     with pytest.warns(UserWarning, match=r"the end of the frame in RendererShadows\._finish_frame"):
         draw(pl)
     assert "Traceback" not in capfd.readouterr().err

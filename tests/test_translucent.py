@@ -1,5 +1,6 @@
 """Translucent casters: each surface lets ``1 - opacity`` through, in every technique."""
 
+import re
 import warnings
 
 import numpy as np
@@ -8,6 +9,7 @@ import pyvista as pv
 from test_reference import camera_view, ground, point_light, rectangle, sphere
 
 from conftest import draw, spot_box_scene
+from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.library import MapLookup, group_uniforms, shadow_functions
 from pvshadows.verify.reference import SceneMesh, trace_reference
 
@@ -113,9 +115,9 @@ def test_a_light_without_translucent_casters_gets_no_companion_pass_texture_or_s
         return pl.shadows._renderers[0].technique(technique).companion_of(light)
 
     def transmit_uniforms():
-        uniforms = ground.GetShaderProperty().GetFragmentCustomUniforms()
-        names = [uniforms.GetNthUniformName(i) for i in range(uniforms.GetNumberOfUniforms())]
-        return [name for name in names if "Transmit" in name]
+        edits = pl.shadows._renderers[0]._edits.of(vtk_id(ground))
+        texts = "".join(new for _, new in edits.replacements)
+        return re.findall(r"uniform sampler\w* (pvs\w*Transmit)", texts)
 
     def passes():
         return [p.name for p in pl.shadows.last_frame.lights[0].passes]

@@ -283,7 +283,7 @@ def test_directional_fallback_hook(monkeypatch):
         def activate(self, plan, context):
             return {}
 
-        def deactivate(self):
+        def end_frame(self):
             pass
 
         def keep_only(self, plans):

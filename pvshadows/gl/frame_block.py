@@ -61,8 +61,8 @@ class LightEntry(NamedTuple):
     strength: float
 
 
-#: Floats before the lights' entries: the probe's light (an int, padded to 16 bytes)
-#: and the viewport (a vec4).
+#: Floats before the lights' entries: the probe's light and a zero (ints, padded to
+#: 16 bytes) and the viewport (a vec4).
 HEADER_FLOATS = 8
 #: Floats of one entry: three matrices and two vectors.
 ENTRY_FLOATS = 3 * 16 + 2 * 4

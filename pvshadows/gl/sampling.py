@@ -7,6 +7,7 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.cube_array import CubeSlot
+from pvshadows.gl.sampler_units import TextureBinding
 from pvshadows.gl.textures import DepthTexture
 
 #: Pixels per side of the tile of per-pixel offset patterns.
@@ -14,12 +15,13 @@ OFFSET_TILE = 32
 
 
 class RawDepthView:
-    """Binds a depth map a second time, without comparison, for reading depths.
+    """Reads a depth map a second time, without comparison, for plain depths.
 
     PCSS needs both: comparisons for its filter and plain depths for its
     blocker search. A sampler object on a second texture unit overrides the
-    texture's compare mode there; it is unbound again after the frame so no
-    VTK texture ever samples through it.
+    texture's compare mode there; the unit is one reserved for pvshadows'
+    samplers (:class:`~pvshadows.gl.sampler_units.SamplerUnits`), so no VTK
+    texture ever samples through it.
 
     Parameters
     ----------
@@ -40,45 +42,26 @@ class RawDepthView:
             (gl.GL_TEXTURE_WRAP_R, gl.GL_CLAMP_TO_EDGE),
         ):
             gl.glSamplerParameteri(self._sampler, name, value)
-        self._bound: dict[int, int] = {}
 
-    def bind(self, depth: DepthTexture | CubeSlot) -> int:
-        """Bind ``depth`` for plain reads on a free unit and return the unit.
-
-        A texture bound already this frame (a cube array that holds the maps of
-        several lights) keeps its unit.
+    def binding(self, source: str, depth: DepthTexture | CubeSlot) -> TextureBinding:
+        """Return ``depth`` read through the raw sampler.
 
         Parameters
         ----------
+        source : str
+            The light's uniform that names it, for example ``"pvsRaw0"``.
         depth : DepthTexture or CubeSlot
             The shadow map.
 
         Returns
         -------
-        int
-            The texture unit, for the sampler uniform.
+        TextureBinding
+            The map's target and handle, with this view's sampler object.
         """
-        if depth.handle in self._bound:
-            return self._bound[depth.handle]
-        gl = self._gl
-        unit = self._window.GetTextureUnitManager().Allocate()
-        self._window.GetState().vtkglActiveTexture(gl.GL_TEXTURE0 + unit)
-        gl.glBindTexture(depth.target, depth.handle)
-        gl.glBindSampler(unit, self._sampler)
-        self._bound[depth.handle] = unit
-        return unit
-
-    def unbind_all(self) -> None:
-        """Unbind the sampler from every unit bound this frame and free the units."""
-        units = self._window.GetTextureUnitManager()
-        for unit in self._bound.values():
-            self._gl.glBindSampler(unit, 0)
-            units.Free(unit)
-        self._bound.clear()
+        return TextureBinding(source, depth.target, depth.handle, self._sampler)
 
     def release(self) -> None:
-        """Delete the sampler object."""
-        self.unbind_all()
+        """Delete the sampler object (GL unbinds it from every unit)."""
         if self._sampler:
             self._gl.glDeleteSamplers(1, [self._sampler])
             self._sampler = 0

@@ -18,6 +18,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.buffers import forget_pointer_records
 from pvshadows.gl.frame_block import FrameBlock
+from pvshadows.gl.sampler_units import SamplerUnits
 from pvshadows.gl.texture_units import park_active_unit
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.plan import LightPlan
@@ -75,6 +76,7 @@ class RendererShadows:
         self._timer: PassTimer | None = None
         self._buffers: ActorBuffers | None = None
         self._block: FrameBlock | None = None
+        self._units: SamplerUnits | None = None
         self._techniques: dict[str, Technique] = {}
         self._frame = 0
         self._active: list[Technique] = []
@@ -115,6 +117,7 @@ class RendererShadows:
         self._timer = PassTimer(window)
         self._buffers = ActorBuffers(window)
         self._block = FrameBlock(window)
+        self._units = self._edits.units = SamplerUnits(window)
         self._techniques = {}
 
     def _extrudes_on_gpu(self) -> bool:
@@ -190,7 +193,6 @@ class RendererShadows:
         for light_report, plan in zip(report.lights, plans, strict=True):
             light_report.notes = list(plan.notes)
         self._where = "keeping only this frame's maps"
-        park_active_unit(self._window)
         casts = [plan.cast for plan in plans if plan.cast is not None]
         for technique in self._techniques.values():
             technique.keep_only(casts)
@@ -202,6 +204,9 @@ class RendererShadows:
         entries = take_light_entries(strengths, lookups, uniforms)
         self._block.update(entries, self.probe_index, self._viewport(context, plans))
         self._apply_edits(snapshot, shadings, uniforms, light_space)
+        assert self._units is not None  # made by _start_gl
+        self._units.bind(uniforms)
+        park_active_unit(self._window)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
 
     @staticmethod
@@ -262,7 +267,7 @@ class RendererShadows:
     def _undo(self) -> list[str]:
         """Leave receivers' shaders as VTK built them and release the maps; return what failed."""
         troubles = []
-        steps = [(f"deactivating {type(t).__name__}", t.deactivate) for t in self._active]
+        steps = [(f"ending the frame of {type(t).__name__}", t.end_frame) for t in self._active]
         steps += [(f"releasing {type(t).__name__}", t.release) for t in self._techniques.values()]
         if self._timer is not None:
             steps.append(("collecting GPU times", self._timer.collect))
@@ -272,6 +277,8 @@ class RendererShadows:
             except Exception as error:
                 troubles.append(f"{what}: {type(error).__name__}: {error}")
         troubles += self._edits.clear()
+        if self._units is not None:
+            self._units.release()
         self.memo.forget()
         self._active = []
         self._techniques = {}
@@ -307,8 +314,10 @@ class RendererShadows:
                     draw(self._context)
         self._where = "the end of the frame"
         for technique in self._active:
-            technique.deactivate()
+            technique.end_frame()
         self._active = []
+        if self._units is not None:
+            self._units.end_frame()
         if self._timer is not None:
             self._timer.collect()
         self._report_receivers()
@@ -343,6 +352,8 @@ class RendererShadows:
                 self._timer.release()
             if self._block is not None:
                 self._block.release()
+            if self._units is not None:
+                self._units.release()
             forget_pointer_records()
         self._techniques.clear()
         self._window = None

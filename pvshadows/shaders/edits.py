@@ -3,13 +3,17 @@
 Each frame the receivers need the edits of the lights that shadow them and
 the uniforms those lights' techniques return (packed into the arrays of each
 group of lights, :func:`pvshadows.shaders.shading.receiver_uniforms`): only
-their samplers' texture units, since everything else they read is in the
-frame's uniform block. Bystanders need only the edit that blacks them out
-in probe frames, and no uniform. Both are sent to VTK only where they changed:
-replacements and packed uniforms are worked out once per distinct set of
-lights an actor shows (its *signature*), not once per actor; replacements are
-rebuilt for an actor only when its state, its signature or the lights'
-shadings changed; and a uniform whose value did not change is not set again.
+their samplers, since everything else they read is in the frame's uniform
+block. The samplers read texture units reserved for them
+(:class:`~pvshadows.gl.sampler_units.SamplerUnits`), written into the
+receivers' source where the context allows: then receivers have no custom
+uniform at all, which VTK would set again at every draw. Bystanders need
+only the edit that blacks them out in probe frames, and no uniform. Both are
+sent to VTK only where they changed: replacements and packed uniforms are
+worked out once per distinct set of lights an actor shows (its *signature*),
+not once per actor; replacements are rebuilt for an actor only when its
+state, its signature or the lights' shadings changed; and a uniform whose
+value did not change is not set again.
 So a frame where only the camera or a light moved, or nothing changed, makes
 no VTK call here at all.
 
@@ -25,6 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.gl.sampler_units import SamplerUnits
 from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.shaders.shading import (
     LightShading,
@@ -90,6 +95,8 @@ class ReceiverEdits:
     """
 
     def __init__(self) -> None:
+        #: The units samplers read; ``None``: the uniforms' values are units already.
+        self.units: SamplerUnits | None = None
         self._edits: dict[str, ShaderEdits] = {}
         self._uniforms: dict[str, vtk.vtkUniforms] = {}
         self._states: dict[str, ActorState | str | None] = {}
@@ -134,7 +141,9 @@ class ReceiverEdits:
             How receivers read each shadowed light.
         uniforms : dict
             Every light's uniform values by name that receivers read
-            themselves: their samplers' texture units.
+            themselves: their samplers' textures
+            (:class:`~pvshadows.gl.sampler_units.TextureBinding`, or units
+            where :attr:`units` is ``None``).
         light_space : list of LightShading, optional
             The shadings of lights whose lookups work at any fragment
             (shadow maps): points and lines without triangles read these.
@@ -213,6 +222,8 @@ class ReceiverEdits:
             self._lights_of.pop(signature, None)
         self._members = members
         self._snapshot, self._shadings, self._lit_points = snapshot, list(shadings), lit_points
+        if self.units is not None:
+            self.units.keep_marked()
 
     def _update_replaced(
         self, snapshot: Snapshot, shadings: list[LightShading], uniforms: dict[str, object]
@@ -257,7 +268,7 @@ class ReceiverEdits:
         signature = (triangles, *_signature(pbr, lights))
         if signature not in fresh:
             self._lights_of[signature] = lights
-            fresh[signature] = receiver_uniforms(lights, uniforms)
+            fresh[signature] = self._values(lights, uniforms)
         values = fresh[signature]
         same_edits = (
             self._states.get(key) is state
@@ -266,11 +277,7 @@ class ReceiverEdits:
         )
         edits = self._edits_of(actor, key)
         if not same_edits:
-            if signature not in self._replacements:
-                self._replacements[signature] = receiver_replacements(
-                    actor, lights, triangles=triangles
-                )
-            edits.apply(self._replacements[signature])
+            edits.apply(self._replacements_for(actor, signature, lights, uniforms))
             if not edits.check.attach():
                 self._unwatched.add(key)
             self.edited += 1
@@ -305,7 +312,7 @@ class ReceiverEdits:
         ``values`` are the signature's values this frame when already converted.
         """
         if values is None:
-            values = receiver_uniforms(self._lights_of[signature], uniforms)
+            values = self._values(self._lights_of[signature], uniforms)
         previous = self._sent[signature]
         if previous.keys() == values.keys():
             changed = [n for n, v in values.items() if not _same(previous[n], v)]
@@ -317,6 +324,34 @@ class ReceiverEdits:
                 setter(target)
         self.uniform_calls += len(targets) * len(setters)
         return values
+
+    def _values(self, lights: list[LightShading], uniforms: dict[str, object]) -> dict:
+        """Return the uniforms VTK sets on a receiver that shows ``lights``."""
+        packed = receiver_uniforms(lights, uniforms)
+        if self.units is None:
+            return packed
+        if self.units.binding:  # the samplers' units are in the source
+            units = self.units.first_units(packed)
+            return {name: value for name, value in packed.items() if name not in units}
+        return self.units.units_of(packed)
+
+    def _replacements_for(
+        self,
+        actor: vtk.vtkActor,
+        signature: tuple,
+        lights: list[LightShading],
+        uniforms: dict[str, object],
+    ) -> list[tuple[str, str]]:
+        """Return the edits of a receiver of ``signature``, once per signature and units."""
+        units = None
+        if self.units is not None and self.units.binding:
+            units = self.units.first_units(receiver_uniforms(lights, uniforms))
+        key = (signature, tuple(sorted(units.items())) if units is not None else None)
+        if key not in self._replacements:
+            self._replacements[key] = receiver_replacements(
+                actor, lights, triangles=signature[0], units=units
+            )
+        return self._replacements[key]
 
     def _edits_of(self, actor: vtk.vtkActor, key: str) -> ShaderEdits:
         if key not in self._edits:

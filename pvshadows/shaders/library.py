@@ -235,7 +235,8 @@ def _group_instance(group: str, lookups: list[MapLookup]) -> str:
         names["PVS_GROUP_TRANSMIT"] = f"{uniform}{TRANSMIT_SAMPLER}"
     if first.kind in LOOPED:
         names["PVS_GROUP_LOOP"] = ""
-        names["PVS_GROUP_COUNT"] = f"{uniform}Count"
+        # a count the compiler cannot fold keeps the loop a loop (see shadow_group.glsl)
+        names["PVS_GROUP_COUNT"] = f"({count} + pvsLoopZero)"
     each = " ".join(f"EACH({j}, {lookup.visibility_name})" for j, lookup in enumerate(lookups))
     names["PVS_GROUP_ALL(EACH)"] = each
     defines, undefines = _defines(names)
@@ -481,8 +482,8 @@ def group_uniforms(
     -------
     dict
         ``uniforms`` without those lights' own uniforms, with each group's
-        arrays: ``list`` of ``int`` for sampler units (and the number of
-        lights of a looped group, ``pvs{group}Count``).
+        arrays: a ``list`` of the members' values for each sampler (a looped
+        group's one texture: its first member's value).
 
     Examples
     --------
@@ -496,14 +497,13 @@ def group_uniforms(
     packed: dict[str, object] = {k: v for k, v in uniforms.items() if k not in taken}
     for group, members in groups.items():
         name = f"pvs{group}"
-        units = {
-            part: [int(cast(int, uniforms[f"pvs{part}{m.vtk_index}"])) for m in members]
+        values = {
+            part: [uniforms[f"pvs{part}{m.vtk_index}"] for m in members]
             for part in members[0].samplers
         }
         if members[0].kind in LOOPED:
-            # one texture for the whole group: every member names the same unit
-            packed[f"{name}Count"] = len(members)
-            packed.update({f"{name}{part}": unit[0] for part, unit in units.items()})
+            # one texture for the whole group: every member names the same one
+            packed.update({f"{name}{part}": value[0] for part, value in values.items()})
         else:
-            packed.update({f"{name}{part}": unit for part, unit in units.items()})
+            packed.update({f"{name}{part}": value for part, value in values.items()})
     return packed

@@ -9,12 +9,14 @@ unshadowed lights are untouched. The edits are ``vtkShaderProperty``
 replacements applied after VTK's own substitutions. What they read is the
 frame's uniform block (``glsl/frame_block.glsl``: every light's matrices,
 parameters and strength, the probe's light, the viewport), uploaded once per
-frame, and the property's custom uniforms, only the texture units of the
-samplers, which VTK sets at every draw; so a receiver needs no observer on
-its mapper and works from its first frame.
+frame, and the samplers, on texture units reserved for them
+(:class:`~pvshadows.gl.sampler_units.SamplerUnits`); so a receiver needs no
+observer on its mapper and works from its first frame.
 
-Samplers are declared by VTK as ``uniform int NAME;`` custom uniforms (the
-texture unit) and retyped here to the sampler type the lookup needs.
+Where the context allows, each sampler is declared here with its unit
+(``layout(binding = N)``) and the receiver has no custom uniform at all.
+Elsewhere VTK declares each sampler as a ``uniform int NAME;`` custom
+uniform (its unit), retyped here to the sampler type the lookup needs.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import column_major
 from pvshadows.gl.programs import glsl_source
+from pvshadows.gl.sampler_units import BINDING_EXTENSION
 from pvshadows.shaders.landing import LandingCheck
 from pvshadows.shaders.library import (
     MapLookup,
@@ -160,7 +163,11 @@ def _light_hooks(
 
 
 def receiver_replacements(
-    actor: vtk.vtkActor, lights: Iterable[LightShading], *, triangles: bool = True
+    actor: vtk.vtkActor,
+    lights: Iterable[LightShading],
+    *,
+    triangles: bool = True,
+    units: Mapping[str, int] | None = None,
 ) -> list[tuple[str, str]]:
     """Return the fragment-shader edits that shadow ``lights`` on ``actor``.
 
@@ -175,6 +182,9 @@ def receiver_replacements(
         spheres, tubes): its lookups use the normal VTK lights it with, and
         it shows "no surface" in probe frames, since the ray-cast reference
         cannot see it.
+    units : Mapping, optional
+        Each sampler's texture unit (an array's first), to write into the
+        source; by default the samplers are VTK's custom uniforms.
 
     Returns
     -------
@@ -195,7 +205,12 @@ def receiver_replacements(
     sources = dict.fromkeys(source for light in lights for source in light.sources)
     defines = dict.fromkeys(define for light in lights for define in light.defines)
     lookups = [lookup for light in lights for lookup in light.needs]
-    functions = "".join(f"#define {name}\n" for name in defines)
+    samplers: dict[str, tuple[str, int | None]] = {
+        name: (kind, None) for light in lights for name, kind in light.samplers.items()
+    }
+    samplers.update(group_samplers(lookups))
+    functions = "".join(_sampler_declaration(name, *kind, units) for name, kind in samplers.items())
+    functions += "".join(f"#define {name}\n" for name in defines)
     each = " ".join(f"EACH(pvsVisibility{i}, pvsKept{i})" for i in (x.vtk_index for x in lights))
     functions += f"#define PVS_LIGHTS(EACH) {each}\n".replace(" \n", "\n")
     functions += frame_block_source(max((light.vtk_index for light in lights), default=0) + 1)
@@ -213,20 +228,28 @@ def receiver_replacements(
         ),
     ]
     first_lookup = min((lookup.vtk_index for lookup in lookups), default=None)
-    samplers: dict[str, tuple[str, int | None]] = {
-        name: (kind, None) for light in lights for name, kind in light.samplers.items()
-    }
-    samplers.update(group_samplers(lookups))
-    directives = "".join(f"\n#extension {name} : require" for name in extensions(lookups))
+    needed = extensions(lookups) + ([BINDING_EXTENSION] if units is not None and samplers else [])
+    directives = "".join(f"\n#extension {name} : require" for name in needed)
     if directives:
         edits.append((_SYSTEM, _SYSTEM + directives))
     normal = _normal_expression(actor, triangles)
     for light in lights:
         edits.extend(_light_hooks(light, pbr, normal, light.vtk_index == first_lookup))
-    for name, (kind, length) in samplers.items():
-        size = "" if length is None else f"[{length}]"
-        edits.append((f"uniform int {name}{size};", f"uniform {kind} {name}{size};"))
+    if units is None:
+        for name, (kind, length) in samplers.items():
+            size = "" if length is None else f"[{length}]"
+            edits.append((f"uniform int {name}{size};", f"uniform {kind} {name}{size};"))
     return edits
+
+
+def _sampler_declaration(
+    name: str, kind: str, length: int | None, units: Mapping[str, int] | None
+) -> str:
+    """Declare a sampler on its unit, or nothing where VTK declares it."""
+    if units is None:
+        return ""
+    size = "" if length is None else f"[{length}]"
+    return f"layout(binding = {units[name]}) uniform {kind} {name}{size};\n"
 
 
 def receiver_uniforms(
@@ -404,6 +427,11 @@ class ShaderEdits:
                 prop.AddFragmentShaderReplacement(original, False, replacement, False)
             self._edits = list(wanted)
         self.check.expect(self._edits)
+
+    @property
+    def replacements(self) -> tuple[tuple[str, str], ...]:
+        """The ``(original, replacement)`` pairs now on the actor's shader property."""
+        return tuple(self._edits)
 
     @property
     def problem(self) -> str | None:

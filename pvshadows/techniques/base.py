@@ -82,10 +82,10 @@ class Technique(Protocol[CastT]):
         """Return how receivers read the light's shadow data."""
 
     def activate(self, plan: CastT, context: FrameContext) -> dict[str, object]:
-        """Bind the light's textures and return the receivers' uniform values."""
+        """Return the receivers' uniform values: the light's textures, matrices and parameters."""
 
-    def deactivate(self) -> None:
-        """Free the texture units bound by :meth:`activate` (after the frame)."""
+    def end_frame(self) -> None:
+        """Let go of what only this frame needed, once its receivers drew."""
 
     def keep_only(self, plans: list[Cast]) -> None:
         """Release what lights that no longer use the technique held."""

@@ -282,7 +282,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         )
 
     def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
-        """Bind the light's cube and filter textures and return the receivers' uniforms.
+        """Return the receivers' uniforms: the light's cube and filter textures, and more.
 
         Parameters
         ----------
@@ -302,7 +302,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         i = plan.vtk_index
         spot = pose.kind is LightKind.SPOT
         cone = math.cos(math.radians(pose.cone_angle)) if spot else -2.0
-        uniforms = self._array_units(plan, context)
+        uniforms = self._array_bindings(plan, context)
         uniforms.update(self._filters.activate(i, settings, state.cube if state.drawn else None))
         if state.companion is not None:
             uniforms.update(self._filters.activate_transmittance(i, state.companion.texture))
@@ -322,12 +322,12 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         )
         return uniforms
 
-    def _array_units(self, plan: Cast, context: FrameContext) -> dict[str, object]:
-        """Bind again the maps of this frame's earlier lights if their array grew since.
+    def _array_bindings(self, plan: Cast, context: FrameContext) -> dict[str, object]:
+        """Name again the maps of this frame's earlier lights if their array grew since.
 
-        An array grows while the lights are brought up one by one; the units of
-        lights activated before then point at the array it grew out of, which
-        lacks the cubes drawn after.
+        An array grows while the lights are brought up one by one; the
+        bindings of lights activated before then name the array it grew out
+        of, which lacks the cubes drawn after.
         """
         if context.frame != self._frame:
             self._frame, self._activated = context.frame, []
@@ -344,9 +344,8 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         self._activated.append(plan)
         return uniforms
 
-    def deactivate(self) -> None:
-        """Free the texture units bound by ``activate`` and the arrays grown out of."""
-        super().deactivate()
+    def end_frame(self) -> None:
+        """Delete the arrays grown out of this frame."""
         for array in (self.arrays or {}).values():
             array.end_frame()
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.cube_array import CubeSlot
+from pvshadows.gl.sampler_units import TextureBinding
 from pvshadows.gl.sampling import DiskOffsets, RawDepthView
 from pvshadows.gl.textures import DepthTexture
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
@@ -88,7 +89,7 @@ def lookup_shading(
 
 
 class FilterBindings:
-    """Binds what the filters of a technique's lights read, and unbinds it after the frame.
+    """Names what the filters of a technique's lights read, for the receivers' units.
 
     Parameters
     ----------
@@ -100,7 +101,6 @@ class FilterBindings:
         self._window = window
         self._raw: RawDepthView | None = None
         self._offsets: dict[int, DiskOffsets] = {}
-        self._active: list[vtk.vtkTextureObject] = []
 
     def _offsets_for(self, samples: int) -> DiskOffsets:
         count = max(samples, PCSS_SEARCH)
@@ -108,16 +108,10 @@ class FilterBindings:
             self._offsets[count] = DiskOffsets(self._window, count)
         return self._offsets[count]
 
-    def _activate(self, texture: vtk.vtkTextureObject) -> int:
-        if texture not in self._active:
-            texture.Activate()
-            self._active.append(texture)
-        return int(texture.GetTextureUnit())
-
     def activate(
         self, vtk_index: int, settings: ShadowSettings, depth: DepthTexture | CubeSlot | None
     ) -> dict:
-        """Bind one light's map and filter textures; return their uniforms.
+        """Return the uniforms of one light's map and filter textures.
 
         Parameters
         ----------
@@ -131,28 +125,29 @@ class FilterBindings:
         Returns
         -------
         dict
-            Sampler units, biases and filter radius, by uniform name.
+            The textures (:class:`~pvshadows.gl.sampler_units.TextureBinding`),
+            biases and filter radius, by uniform name.
         """
         i = vtk_index
         bias = (settings.normal_offset, settings.bias, settings.slope_bias, 0.0)
         if depth is None:
             return {f"pvsBias{i}": bias}
         uniforms: dict[str, object] = {
-            f"pvsDepth{i}": self._activate(depth.texture),
+            f"pvsDepth{i}": TextureBinding.of(f"pvsDepth{i}", depth.texture),
             f"pvsBias{i}": bias,
         }
         if settings.filter in ("random", "pcss"):
             offsets = self._offsets_for(settings.samples)
-            uniforms[f"pvsOffsets{i}"] = self._activate(offsets.texture)
+            uniforms[f"pvsOffsets{i}"] = TextureBinding.of(f"pvsOffsets{i}", offsets.texture)
             uniforms[f"pvsFilterRadius{i}"] = float(settings.filter_radius)
         if settings.filter == "pcss":
             if self._raw is None:
                 self._raw = RawDepthView(self._window)
-            uniforms[f"pvsRaw{i}"] = self._raw.bind(depth)
+            uniforms[f"pvsRaw{i}"] = self._raw.binding(f"pvsRaw{i}", depth)
         return uniforms
 
     def activate_transmittance(self, vtk_index: int, companion: TransmittanceTexture) -> dict:
-        """Bind one light's transmittance companion; return its sampler uniform.
+        """Return the uniform of one light's transmittance companion.
 
         Parameters
         ----------
@@ -164,21 +159,13 @@ class FilterBindings:
         Returns
         -------
         dict
-            ``{"pvsTransmit{i}": unit}``.
+            ``{"pvsTransmit{i}": binding}``.
         """
-        return {f"pvsTransmit{vtk_index}": self._activate(companion.texture)}
-
-    def deactivate(self) -> None:
-        """Free every unit bound this frame."""
-        for texture in self._active:
-            texture.Deactivate()
-        self._active.clear()
-        if self._raw is not None:
-            self._raw.unbind_all()
+        name = f"pvsTransmit{vtk_index}"
+        return {name: TextureBinding.of(name, companion.texture)}
 
     def release(self) -> None:
         """Delete the offset textures and the raw sampler."""
-        self.deactivate()
         for offsets in self._offsets.values():
             offsets.release()
         self._offsets.clear()

@@ -330,7 +330,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         )
 
     def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
-        """Bind the light's map and filter textures and return the receivers' uniforms.
+        """Return the receivers' uniforms: the light's map and filter textures, and more.
 
         Parameters
         ----------

@@ -152,9 +152,8 @@ class PerLightMaps(Generic[StateT, PassT]):
         state = self._states.get(vtk_id(light))
         return state.companion.texture if state is not None and state.companion else None
 
-    def deactivate(self) -> None:
-        """Free the texture units bound by ``activate``."""
-        self._filters.deactivate()
+    def end_frame(self) -> None:
+        """Nothing to let go of: the maps stay bound on the receivers' units."""
 
     def keep_only(self, plans: list[Cast]) -> None:
         """Release the maps of lights that no longer use this technique.

@@ -55,7 +55,6 @@ class _LightState:
     key: tuple | None = None
     frame: int = -1
     plane_actor: str | None = None
-    active: bool = False
 
 
 def may_cast(caster: ActorState, plane: np.ndarray, light: np.ndarray) -> bool:
@@ -339,7 +338,7 @@ class PlanarTechnique:
         )
 
     def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
-        """Bind the light's mask and return the receivers' uniforms.
+        """Return the receivers' uniforms: the light's mask and facing test.
 
         Parameters
         ----------
@@ -356,15 +355,10 @@ class PlanarTechnique:
         state = self._lights.get(plan.key)
         if state is None or state.plane_actor is None:
             return mask_uniforms(plan, context, None)
-        state.active = True
         return mask_uniforms(plan, context, state.mask)
 
-    def deactivate(self) -> None:
-        """Free the texture units bound by :meth:`activate`."""
-        for state in self._lights.values():
-            if state.active:
-                state.mask.texture.Deactivate()
-                state.active = False
+    def end_frame(self) -> None:
+        """Nothing to let go of: the masks stay bound on the receivers' units."""
 
     def mask_of(self, light: vtk.vtkLight) -> MaskTexture | None:
         """Return the mask kept for a light, if any (for tests and debugging)."""

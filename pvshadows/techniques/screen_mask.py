@@ -10,6 +10,7 @@ uniforms of that lookup, so both techniques name them the same way.
 from __future__ import annotations
 
 from pvshadows.gl.mask_target import MaskTexture
+from pvshadows.gl.sampler_units import TextureBinding
 from pvshadows.model.plan import Cast
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
@@ -84,7 +85,7 @@ def mask_shading(
 
 
 def mask_uniforms(plan: Cast, context: FrameContext, mask: MaskTexture | None) -> dict[str, object]:
-    """Bind a light's mask and return the uniforms of its lookup.
+    """Return the uniforms of a light's mask lookup.
 
     Parameters
     ----------
@@ -93,14 +94,14 @@ def mask_uniforms(plan: Cast, context: FrameContext, mask: MaskTexture | None) -
     context : FrameContext
         This frame's camera and render target.
     mask : MaskTexture or None
-        The mask, bound to a texture unit here; ``None`` for the facing test
-        alone.
+        The mask; ``None`` for the facing test alone.
 
     Returns
     -------
     dict
         ``pvsLightVC{i}`` (for the light's entry of the frame's uniform
-        block), and with a mask its texture unit ``pvsMask{i}``.
+        block), and with a mask its texture ``pvsMask{i}``
+        (:class:`~pvshadows.gl.sampler_units.TextureBinding`).
     """
     i = plan.vtk_index
     uniforms: dict[str, object] = {
@@ -108,6 +109,5 @@ def mask_uniforms(plan: Cast, context: FrameContext, mask: MaskTexture | None) -
     }
     if mask is None:
         return uniforms
-    mask.texture.Activate()
-    uniforms[f"pvsMask{i}"] = mask.texture.GetTextureUnit()
+    uniforms[f"pvsMask{i}"] = TextureBinding.of(f"pvsMask{i}", mask.texture)
     return uniforms

@@ -413,7 +413,7 @@ class VolumeTechnique:
         return combine_shadings(own, self._fallbacks.technique(name).shading(subplan))
 
     def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
-        """Bind the light's mask and return the receivers' uniforms.
+        """Return the receivers' uniforms: the light's mask and facing test.
 
         Parameters
         ----------
@@ -436,11 +436,9 @@ class VolumeTechnique:
             uniforms.update(self._fallbacks.technique(name).activate(subplan, context))
         return uniforms
 
-    def deactivate(self) -> None:
-        """Free the texture units bound by :meth:`activate`."""
-        for state in self._lights.values():
-            state.mask.texture.Deactivate()
-        self._fallbacks.deactivate()
+    def end_frame(self) -> None:
+        """End the frame of the open casters' fallback techniques."""
+        self._fallbacks.end_frame()
 
     def draw_debug(self, context: FrameContext) -> None:
         """Draw this frame's volumes translucent over the finished frame (``show_volumes``).

@@ -91,10 +91,10 @@ class OpenCasterFallbacks:
             self._fallbacks[name] = TECHNIQUE_CLASSES[name](self._window)
         return self._fallbacks[name]
 
-    def deactivate(self) -> None:
-        """Free the texture units the fallback maps were bound to."""
+    def end_frame(self) -> None:
+        """End the frame of every fallback technique."""
         for technique in self._fallbacks.values():
-            technique.deactivate()
+            technique.end_frame()
 
     def keep_only(self, plans: list[Cast]) -> None:
         """Release the fallback maps of lights whose plans are not in ``plans``."""
