@@ -43,3 +43,22 @@ def test_boxes_behind_the_light_or_beside_a_narrow_cone_are_culled():
         ]
     )
     assert boxes_in_spot(boxes, pose).tolist() == [False, False, True, True]
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_one_box_tested_alone_gets_the_answer_it_gets_among_many(seed):
+    rng = np.random.default_rng(seed)
+    inside = 0
+    for _ in range(40):
+        direction = rng.normal(size=3)
+        direction /= np.linalg.norm(direction)
+        pose = LightPose(
+            LightKind.SPOT, rng.uniform(-2, 2, 3), direction, float(rng.uniform(5, 89))
+        )
+        centres, halves = rng.uniform(-6, 6, (100, 3)), rng.uniform(0.01, 1.5, (100, 3))
+        boxes = np.stack([centres - halves, centres + halves], axis=1)
+        together = boxes_in_spot(boxes, pose)
+        alone = np.concatenate([boxes_in_spot(box[None], pose) for box in boxes])
+        assert np.array_equal(alone, together)
+        inside += int(together.sum())
+    assert 0 < inside < 40 * 100

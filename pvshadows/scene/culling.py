@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 
 import numpy as np
@@ -161,7 +162,8 @@ def box_in_spot(box: np.ndarray, pose: LightPose) -> bool:
     >>> box_in_spot(np.array([[3, 3, -2], [4, 4, -1]]), pose)
     False
     """
-    return bool(boxes_in_spot(np.asarray(box)[None], pose)[0])
+    lo, hi = np.asarray(box, dtype=np.float64).tolist()
+    return _one_box_in_spot(lo, hi, pose)
 
 
 #: Which of the min (0) or max (1) corner each coordinate of a box's eight corners takes.
@@ -212,6 +214,38 @@ def _cone_planes(direction: tuple[float, float, float], cone_angle: float) -> np
     return planes
 
 
+@lru_cache(maxsize=256)
+def _cone_plane_rows(
+    direction: tuple[float, float, float], cone_angle: float
+) -> tuple[tuple[float, ...], ...]:
+    """Return :func:`_cone_planes` as plain floats, for one box tested alone."""
+    return tuple(tuple(row) for row in _cone_planes(direction, cone_angle).tolist())
+
+
+def _one_box_in_spot(lo: list[float], hi: list[float], pose: LightPose) -> bool:
+    """Test one box as :func:`boxes_in_spot` does, in plain floats.
+
+    For one box, numpy's cost per call outweighs its speed: an actor that
+    moved is tested alone under each spot light.
+    """
+    position = pose.position.tolist()
+    lo = [a - p for a, p in zip(lo, position, strict=True)]
+    hi = [b - p for b, p in zip(hi, position, strict=True)]
+    if all(a <= 0.0 for a in lo) and all(b >= 0.0 for b in hi):
+        return True
+    direction = pose.direction.tolist()
+    for normal in _cone_plane_rows(tuple(direction), float(pose.cone_angle)):
+        farthest = sum((b if n > 0.0 else a) * n for a, b, n in zip(lo, hi, normal, strict=True))
+        if farthest < 0.0:
+            return False
+    center = [0.5 * (a + b) for a, b in zip(lo, hi, strict=True)]
+    radius = 0.5 * math.dist(lo, hi)
+    along = sum(c * d for c, d in zip(center, direction, strict=True))
+    across = math.hypot(*(c - along * d for c, d in zip(center, direction, strict=True)))
+    angle = math.radians(min(pose.cone_angle, 89.9))
+    return across * math.cos(angle) - along * math.sin(angle) <= radius
+
+
 def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:
     """Test many world boxes against a spot light's cone at once, like :func:`box_in_spot`.
 
@@ -242,6 +276,9 @@ def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:
     [True, False]
     """
     boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
+    if len(boxes) == 1:
+        lo_, hi_ = boxes[0].tolist()
+        return np.array([_one_box_in_spot(lo_, hi_, pose)])
     lo, hi = boxes[:, 0] - pose.position, boxes[:, 1] - pose.position
     holds_light = np.all(lo <= 0.0, axis=1) & np.all(hi >= 0.0, axis=1)
     # A box is behind a plane through the light when its corner farthest along the
