@@ -19,9 +19,9 @@ class RawDepthView:
 
     PCSS needs both: comparisons for its filter and plain depths for its
     blocker search. A sampler object on a second texture unit overrides the
-    texture's compare mode there; the unit is one reserved for pvshadows'
-    samplers (:class:`~pvshadows.gl.sampler_units.SamplerUnits`), so no VTK
-    texture ever samples through it.
+    texture's compare mode there, and is unbound from it before the unit
+    goes back to VTK (:meth:`pvshadows.gl.sampler_units.SamplerUnits.end_frame`),
+    so no VTK texture ever samples through it.
 
     Parameters
     ----------
