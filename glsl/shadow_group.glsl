@@ -23,8 +23,10 @@
 //                            its entry of pvsLights (frame_block.glsl), which holds
 //                            its view-to-light matrix, its pack (params, cone, bias,
 //                            filter) and a spot map's light-to-clip matrix
-//   PVS_GROUP_DEPTH, PVS_GROUP_RAW, PVS_GROUP_OFFSETS   sampler arrays: the maps
-//                            for comparisons, plain views of them (PCSS), disk offsets
+//   PVS_GROUP_DEPTH, PVS_GROUP_RAW   sampler arrays: the maps for comparisons,
+//                            plain views of them (PCSS)
+//   PVS_GROUP_OFFSETS        the disk offsets (random, PCSS): one texture for the
+//                            group, whose lights share a sample count
 //   PVS_GROUP_TRANSLUCENT    defined for lights whose casters include translucent
 //                            ones: the filter's result is multiplied by PVS_TRANSMIT
 //                            read from PVS_GROUP_TRANSMIT, the companions' sampler array
@@ -75,9 +77,9 @@
 #elif defined(PVS_GROUP_PCF)
 #define PVS_GROUP_FILTER(j, r) PVS_PCF(PVS_GROUP_SAMPLER(PVS_GROUP_DEPTH, j), PVS_GROUP_MAP(j), r, PVS_GROUP_TAPS(j))
 #elif defined(PVS_GROUP_RANDOM)
-#define PVS_GROUP_FILTER(j, r) PVS_RANDOM(PVS_GROUP_SAMPLER(PVS_GROUP_DEPTH, j), PVS_GROUP_MAP(j), r, PVS_GROUP_SAMPLER(PVS_GROUP_OFFSETS, j), PVS_GROUP_TAPS(j), PVS_GROUP_PACK(j)[3].x)
+#define PVS_GROUP_FILTER(j, r) PVS_RANDOM(PVS_GROUP_SAMPLER(PVS_GROUP_DEPTH, j), PVS_GROUP_MAP(j), r, PVS_GROUP_OFFSETS, PVS_GROUP_TAPS(j), PVS_GROUP_PACK(j)[3].x)
 #else
-#define PVS_GROUP_FILTER(j, r) PVS_PCSS(PVS_GROUP_SAMPLER(PVS_GROUP_DEPTH, j), PVS_GROUP_SAMPLER(PVS_GROUP_RAW, j), PVS_GROUP_MAP(j), r, PVS_GROUP_SAMPLER(PVS_GROUP_OFFSETS, j), PVS_GROUP_TAPS(j))
+#define PVS_GROUP_FILTER(j, r) PVS_PCSS(PVS_GROUP_SAMPLER(PVS_GROUP_DEPTH, j), PVS_GROUP_SAMPLER(PVS_GROUP_RAW, j), PVS_GROUP_MAP(j), r, PVS_GROUP_OFFSETS, PVS_GROUP_TAPS(j))
 #endif
 
 #if defined(PVS_GROUP_TRANSLUCENT)

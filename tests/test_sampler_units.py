@@ -16,7 +16,10 @@ import pyvista as pv
 
 import pvshadows.gl.sampler_units as sampler_units
 from conftest import draw, point_light
+from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.triangles import vtk_id
+from pvshadows.shaders.library import group_samplers, group_uniforms
+from pvshadows.techniques.filtering import lookup_shading
 from pvshadows.tools.scenes import spot_light
 
 #: How each case enables shadows, and its lights.
@@ -73,15 +76,16 @@ def test_mesa_gives_samplers_their_units_in_the_source():
     declared = re.findall(
         r"layout\(binding = (\d+)\) uniform (\w+) (\w+)", _receiver_edits(plotter, "ground")
     )
-    # the two spot lights' arrays of two (map, plain view, offsets), then the point
-    # light's cube array, each block below the last, from the top of the range down
+    # the two spot lights' arrays of two (map, plain view) and their one offset
+    # texture, then the point light's cube array, each block below the last, from the
+    # top of the range down
     assert [(total - int(unit), kind, name) for unit, kind, name in declared] == [
-        (2, "sampler2DShadow", "pvsSpotPcssDepth"),
-        (4, "sampler2D", "pvsSpotPcssRaw"),
-        (6, "sampler3D", "pvsSpotPcssOffsets"),
-        (7, "samplerCubeArrayShadow", "pvsCubesPcss1024x32Depth"),
-        (8, "samplerCubeArray", "pvsCubesPcss1024x32Raw"),
-        (9, "sampler3D", "pvsCubesPcss1024x32Offsets"),
+        (2, "sampler2DShadow", "pvsSpotPcssx32Depth"),
+        (4, "sampler2D", "pvsSpotPcssx32Raw"),
+        (5, "sampler3D", "pvsSpotPcssx32Offsets"),
+        (6, "samplerCubeArrayShadow", "pvsCubesPcss1024x32Depth"),
+        (7, "samplerCubeArray", "pvsCubesPcss1024x32Raw"),
+        (8, "sampler3D", "pvsCubesPcss1024x32Offsets"),
     ]
     assert plotter.shadows.measure().misclassified < 0.005
 
@@ -140,6 +144,24 @@ def test_a_unit_held_by_another_texture_fails_one_frame_and_the_next_picks_other
     manager.Free(taken)
 
 
+def test_soft_lights_take_a_unit_each_and_one_for_their_offsets():
+    plotter = pv.Plotter(off_screen=True, window_size=[160, 120], lighting="none")
+    plotter.add_mesh(pv.Plane(i_size=10, j_size=10), color="white", name="ground")
+    plotter.add_mesh(pv.Sphere(radius=0.6, center=(0, 0, 1.0)), color="tan")
+    lights = []
+    for k in range(4):
+        angle = 2 * np.pi * k / 4
+        position = (2 * np.cos(angle), 2 * np.sin(angle), 5.0)
+        lights.append(spot_light(position, (0, 0, 0), cone_angle=45, intensity=0.2))
+        plotter.add_light(lights[-1])
+    plotter.shadows.enable(lights=lights, filter="random", samples=16)
+    draw(plotter)
+    assert plotter.shadows.last_frame.failure is None
+    blocks = plotter.shadows._renderers[0]._units._blocks
+    assert sorted(len(key) for key in blocks) == [1, 4]  # the offsets, the maps
+    assert plotter.shadows.measure(lights[0]).misclassified < 0.005
+
+
 def test_too_few_free_units_is_a_clear_error():
     plotter, _ = _scene()
     plotter.render()
@@ -148,3 +170,19 @@ def test_too_few_free_units_is_a_clear_error():
     total = manager.GetNumberOfTextureUnits()
     with pytest.raises(RuntimeError, match=f"needs {total + 1} consecutive free texture units"):
         units._reserve(total + 1)
+
+
+def test_a_group_reads_one_offset_texture_and_other_sample_counts_form_their_own():
+    def lookup(index, samples):
+        settings = ShadowSettings(filter="random", samples=samples)
+        return lookup_shading("spot", index, settings).needs[0]
+
+    first, other, third = lookup(0, 16), lookup(1, 64), lookup(2, 16)
+    assert first.group == third.group != other.group
+    samplers = group_samplers([first, other, third])
+    assert samplers[f"pvs{first.group}Offsets"] == ("sampler3D", None)
+    assert samplers[f"pvs{first.group}Depth"] == ("sampler2DShadow", 2)
+    own = {"pvsDepth0": 1, "pvsOffsets0": 7, "pvsDepth2": 2, "pvsOffsets2": 7}
+    packed = group_uniforms([first, third], own)
+    assert packed[f"pvs{first.group}Offsets"] == 7
+    assert packed[f"pvs{first.group}Depth"] == [1, 2]

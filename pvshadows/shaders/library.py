@@ -108,6 +108,9 @@ GROUP_SAMPLERS = {
 #: The sampler array a group of lights with translucent casters reads besides its
 #: filter's: each light's transmittance companion.
 TRANSMIT_SAMPLER = "Transmit"
+#: Samplers of one texture for the whole group, not an array: the disk offsets, made
+#: per sample count, which is part of the group's name (:attr:`MapLookup.texture`).
+GROUP_SHARED = ("Offsets",)
 
 
 @dataclass(frozen=True)
@@ -142,7 +145,9 @@ class MapLookup:
     texture : str
         For a looped kind, which texture holds the light's map (the lights of
         a group share it), for example ``"1024"`` for the cube array of
-        1024-texel cubes; its layer is the uniform ``pvsLayer{i}``.
+        1024-texel cubes; its layer is the uniform ``pvsLayer{i}``. For the
+        random and PCSS filters, then the disk offsets' sample count, for
+        example ``"x32"``: a group reads one offset texture.
     """
 
     kind: str
@@ -368,7 +373,7 @@ def group_samplers(lookups: Iterable[MapLookup]) -> dict[str, tuple[str, int | N
         }
         length = None if kind in LOOPED else len(members)
         for part in members[0].samplers:
-            samplers[f"pvs{group}{part}"] = (types[part], length)
+            samplers[f"pvs{group}{part}"] = (types[part], None if part in GROUP_SHARED else length)
     return samplers
 
 
@@ -501,9 +506,8 @@ def group_uniforms(
             part: [uniforms[f"pvs{part}{m.vtk_index}"] for m in members]
             for part in members[0].samplers
         }
-        if members[0].kind in LOOPED:
+        for part, value in values.items():
             # one texture for the whole group: every member names the same one
-            packed.update({f"{name}{part}": value[0] for part, value in values.items()})
-        else:
-            packed.update({f"{name}{part}": value for part, value in values.items()})
+            shared = members[0].kind in LOOPED or part in GROUP_SHARED
+            packed[f"{name}{part}"] = value[0] if shared else value
     return packed

@@ -79,7 +79,7 @@ def lookup_shading(
             kind, "pcf", vtk_index, PCF_GRID[settings.pcf_taps], translucent, texture
         )
     elif settings.filter in ("random", "pcss"):
-        offsets = f"x{max(settings.samples, PCSS_SEARCH)}" if texture else ""
+        offsets = f"x{max(settings.samples, PCSS_SEARCH)}"
         lookup = MapLookup(
             kind, settings.filter, vtk_index, settings.samples, translucent, texture + offsets
         )
