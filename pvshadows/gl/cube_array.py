@@ -18,6 +18,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.capabilities import extension_names, gl_version
 from pvshadows.gl.framebuffer import finish_binding
 
 
@@ -45,15 +46,9 @@ def cube_arrays_supported(gl: ModuleType) -> bool:
     >>> cube_arrays_supported(opengl_for(pl.ren_win))  # Mesa's OpenGL 4.5
     True
     """
-    version = (
-        int(gl.glGetIntegerv(gl.GL_MAJOR_VERSION)),
-        int(gl.glGetIntegerv(gl.GL_MINOR_VERSION)),
-    )
-    if version >= (4, 3):
+    if gl_version(gl) >= (4, 3):
         return True
-    count = int(gl.glGetIntegerv(gl.GL_NUM_EXTENSIONS))
-    names = {gl.glGetStringi(gl.GL_EXTENSIONS, i).decode() for i in range(count)}
-    return {"GL_ARB_texture_cube_map_array", "GL_ARB_copy_image"} <= names
+    return {"GL_ARB_texture_cube_map_array", "GL_ARB_copy_image"} <= extension_names(gl)
 
 
 class CubeArray:

@@ -25,11 +25,11 @@ from dataclasses import dataclass, field
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.capabilities import extension_names
+from pvshadows.gl.texture_units import GL_TEXTURE0
 
 #: The extension that lets GLSL 1.50 give a sampler its unit.
 BINDING_EXTENSION = "GL_ARB_shading_language_420pack"
-#: ``GL_TEXTURE0``: unit ``n`` is ``GL_TEXTURE0 + n``.
-GL_TEXTURE0 = 0x84C0
 
 
 @dataclass(frozen=True)
@@ -122,10 +122,7 @@ def binding_supported(window: vtk.vtkOpenGLRenderWindow) -> bool:
     >>> isinstance(binding_supported(pl.ren_win), bool)
     True
     """
-    gl = opengl_for(window)
-    count = int(gl.glGetIntegerv(gl.GL_NUM_EXTENSIONS))
-    names = (gl.glGetStringi(gl.GL_EXTENSIONS, i) for i in range(count))
-    return any(name == BINDING_EXTENSION.encode() for name in names)
+    return BINDING_EXTENSION in extension_names(opengl_for(window))
 
 
 class SamplerUnits:
@@ -284,10 +281,9 @@ class SamplerUnits:
         state = self._window.GetState()
         for key, first in self._blocks.items():
             for unit, source in enumerate(key, first):
-                if manager.IsAllocated(unit):
+                if manager.Allocate(unit) != unit:  # -1: held already
                     msg = f"texture unit {unit}, kept for {source}, is held by another texture"
                     raise RuntimeError(msg)
-                manager.Allocate(unit)
                 self._held.append(unit)
                 binding = uniforms.get(source)
                 if not isinstance(binding, TextureBinding):
