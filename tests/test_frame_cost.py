@@ -21,6 +21,10 @@ def counters(pl):
         "block uploads": shadows._block.uploads,
         "planned": shadows.memo.made,
         "view tests": shadows.memo.view_tests,
+        "fit measures": sum(
+            state.measures.measured
+            for state in getattr(shadows._techniques.get("map"), "_states", {}).values()
+        ),
     }
 
 
@@ -127,8 +131,10 @@ def test_nothing_changed_costs_no_vtk_call():
 
 def test_moving_one_actor_rereads_and_tests_that_actor_only():
     pl, _ = crowd()
-    snapshot = pl.shadows._renderers[0].snapshot
-    moved = next(s.actor for s in snapshot.casters if s.actor is not snapshot.receivers[0].actor)
+    shadows = pl.shadows._renderers[0]
+    ground = shadows.snapshot.receivers[0].actor
+    # one of the spot's own casters, so that its map is drawn again
+    moved = next(s.actor for s in shadows.plans[0].cast.casters if s.actor is not ground)
     before = counters(pl)
     moved.AddPosition(0.01, 0.0, 0.0)
     draw(pl)
@@ -136,6 +142,7 @@ def test_moving_one_actor_rereads_and_tests_that_actor_only():
     assert counted["compared"] == 1  # of 200 actors, only the one whose times moved
     assert counted["reread"] == 1
     assert counted["cone tests"] == 1
+    assert counted["fit measures"] == 1  # the spot's fit and range: the moved box alone
     assert counted["edits"] == 1
     assert counted["received"] == 1  # the other receivers take changed uniforms by kind
     assert pl.shadows._renderers[0].snapshot.changed == {moved.__this__}
@@ -229,6 +236,7 @@ def test_moving_the_light_tests_every_actor_once_and_runs_its_pass():
     counted = change(before, counters(pl))
     assert counted["reread"] == 0
     assert counted["cone tests"] == actors
+    assert counted["fit measures"] == len(pl.shadows._renderers[0].snapshot.casters)
     assert counted["received"] == 0
     # Its far distance, fit and cone go to the frame's block: no receiver is given a uniform.
     assert counted["uniforms"] == 0
@@ -433,3 +441,22 @@ def test_a_caster_is_tested_for_closure_only_when_a_light_culls_front_faces(monk
         for a in (scene.ground, scene.box, scene.sphere, scene.cylinder)
     )
     assert pl.shadows.measure(scene.light).misclassified <= 0.002
+
+
+def test_a_spots_measures_patched_over_moved_actors_match_measures_taken_afresh():
+    from pvshadows.scene.fitting import ConeMeasureCache
+
+    pl, _ = crowd()
+    shadows = pl.shadows._renderers[0]
+    ground = shadows.snapshot.receivers[0].actor
+    movers = [s.actor for s in shadows.plans[0].cast.casters if s.actor is not ground][:3]
+    for step, actor in enumerate(movers * 2):
+        actor.AddPosition(0.05 * (step + 1), -0.03, 0.02)
+        draw(pl)
+    cast = shadows.plans[0].cast
+    (state,) = shadows.technique("map")._states.values()
+    patched = state.measures.of(cast.pose, shadows.snapshot)
+    fresh = ConeMeasureCache().of(cast.pose, shadows.snapshot)
+    assert state.measures.measured == len(shadows.snapshot.casters) + 2 * len(movers)
+    for name in ("near", "far", "spread"):
+        assert getattr(patched, name).tolist() == getattr(fresh, name).tolist()

@@ -17,7 +17,6 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import fields, replace
 from functools import cached_property
-from itertools import compress
 from typing import Any
 
 import numpy as np
@@ -391,7 +390,7 @@ def _plan_light(
         )
         return plan, use
     hits = reached[snapshot.caster_index]
-    within = casters if hits.all() else list(compress(casters, hits.tolist()))
+    within = snapshot.casters_at(np.flatnonzero(hits))
     if not within:
         plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
         return plan, use

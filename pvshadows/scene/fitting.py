@@ -12,14 +12,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from itertools import compress
 
 import numpy as np
 
 from pvshadows.geometry.transforms import look_rotation, perspective, translation
 from pvshadows.scene.culling import box_corners
 from pvshadows.scene.lights import LightPose
-from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.snapshot import CASTERS, ActorState, Snapshot
 
 #: Sizes of the sun's map are rounded up to steps of 2 ** (1 / SIZE_STEPS_PER_OCTAVE).
 SIZE_STEPS_PER_OCTAVE = 8
@@ -87,30 +86,190 @@ def spot_fit(
     >>> round(fit.texel, 4)
     0.002
     """
-    rotation = look_rotation(pose.direction, _up_for(pose.direction))
-    half = _spot_half_width(pose, rotation, boxes) * (1.0 + 2.0 * MARGIN_TEXELS / resolution)
+    spread = None
+    if boxes is not None and len(boxes):
+        boxes = np.asarray(boxes, dtype=np.float64)
+        spread = float(_cone_measures(pose, _spot_rotation(pose), boxes).spread.max())
+    return spot_fit_within(pose, resolution, near, far, spread)
+
+
+def spot_fit_within(
+    pose: LightPose, resolution: int, near: float, far: float, spread: float | None
+) -> SpotFit:
+    """Return the perspective map holding a spot light's cone, or a narrower spread.
+
+    Parameters
+    ----------
+    pose : LightPose
+        The spot light.
+    resolution : int
+        Texels per side.
+    near, far : float
+        Clip distances.
+    spread : float or None
+        The widest :attr:`ConeMeasures.spread` of the casters that can
+        shadow a receiver (``None`` or infinite: the whole cone).
+
+    Returns
+    -------
+    SpotFit
+        As :func:`spot_fit`.
+    """
+    rotation = _spot_rotation(pose)
+    cone = float(np.tan(np.radians(min(pose.cone_angle, 89.0))))
+    half = cone if spread is None else min(cone, spread)
+    half *= 1.0 + 2.0 * MARGIN_TEXELS / resolution
     fov = 2.0 * np.degrees(np.arctan(half))
     projection = perspective(fov, 1.0, near, far) @ rotation
     return SpotFit(rotation, projection, float(2.0 * half / resolution))
 
 
-def _spot_half_width(pose: LightPose, rotation: np.ndarray, boxes: np.ndarray | None) -> float:
-    """Tangent of the half angle the map must hold: the cone's, or less for casters in front."""
-    cone = float(np.tan(np.radians(min(pose.cone_angle, 89.0))))
-    if boxes is None or len(boxes) == 0:
-        return cone
-    corners = box_corners(np.asarray(boxes, dtype=np.float64)).reshape(-1, 3)
-    local = (corners - pose.position) @ rotation[:3, :3].T
-    depth = -local[:, 2]
-    if not np.all(depth > 0.0):
-        return cone
-    return min(cone, float(np.max(np.abs(local[:, :2]) / depth[:, None])))
+def _spot_rotation(pose: LightPose) -> np.ndarray:
+    return look_rotation(pose.direction, _up_for(pose.direction))
 
 
-def spot_shadowing_casters(
+def box_distances_squared(position: np.ndarray, boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return the squared distances from a point to each box and to its farthest corner.
+
+    Parameters
+    ----------
+    position : numpy.ndarray
+        ``(3,)`` the point (a light).
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` world bounds.
+
+    Returns
+    -------
+    near, far : numpy.ndarray
+        ``(n,)`` each: squared distance to the box (0 inside it) and to the
+        corner farthest from the point.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.fitting import box_distances_squared
+    >>> near, far = box_distances_squared(np.zeros(3), np.array([[[1.0, -1, -1], [2, 1, 1]]]))
+    >>> near.tolist(), far.tolist()
+    ([1.0], [6.0])
+    """
+    lo, hi = boxes[:, 0] - position, boxes[:, 1] - position
+    outside = np.maximum(np.maximum(lo, -hi), 0.0)
+    corner = np.maximum(np.abs(lo), np.abs(hi))
+    return np.einsum("ij,ij->i", outside, outside), np.einsum("ij,ij->i", corner, corner)
+
+
+@dataclass(frozen=True)
+class ConeMeasures:
+    """What a spot light's map is fitted to, for each caster of a snapshot.
+
+    Attributes
+    ----------
+    near, far : numpy.ndarray
+        ``(n,)`` squared distances from the light to each caster's bounds
+        and to their farthest corner (:func:`box_distances_squared`).
+    spread : numpy.ndarray
+        ``(n,)`` tangent of the widest angle off the map's axis of each
+        caster's bound corners; infinite when a corner is not in front of
+        the light.
+    """
+
+    near: np.ndarray
+    far: np.ndarray
+    spread: np.ndarray
+
+
+def _cone_measures(pose: LightPose, rotation: np.ndarray, boxes: np.ndarray) -> ConeMeasures:
+    near, far = box_distances_squared(pose.position, boxes)
+    local = ((box_corners(boxes) - pose.position) @ rotation[:3, :3].T).reshape(-1, 8, 3)
+    depth = -local[..., 2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        spread = (np.abs(local[..., :2]) / depth[..., None]).max(axis=(1, 2))
+    spread[~(depth > 0.0).all(axis=1)] = np.inf
+    return ConeMeasures(near, far, spread)
+
+
+class ConeMeasureCache:
+    """A spot light's :class:`ConeMeasures`, kept while the light stays where it is.
+
+    When only some casters changed since the snapshot they were measured
+    in (:meth:`pvshadows.scene.snapshot.Snapshot.successor`), only those
+    are measured again: an actor that moved costs its own box, not the
+    scene's.
+
+    Attributes
+    ----------
+    measured : int
+        Casters measured so far (for tests).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pyvista as pv
+    >>> from pvshadows.scene.fitting import ConeMeasureCache
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> from pvshadows.scene.snapshot import SceneReader
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> boxes = [pl.add_mesh(pv.Cube(center=(x, 0, -5))) for x in (-1, 1)]
+    >>> reader = SceneReader(lambda actor: "a cube")
+    >>> pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 45.0)
+    >>> cache = ConeMeasureCache()
+    >>> cache.of(pose, reader.read(pl.renderer)).near.round(2).tolist()
+    [20.5, 20.5]
+    >>> boxes[1].position = (0, 0, 1)
+    >>> cache.of(pose, reader.read(pl.renderer)).near.round(2).tolist(), cache.measured
+    ([20.5, 12.5], 3)
+    """
+
+    def __init__(self) -> None:
+        self._key: tuple | None = None
+        self._snapshot: Snapshot | None = None
+        self._measures: ConeMeasures | None = None
+        self.measured = 0
+
+    def of(self, pose: LightPose, snapshot: Snapshot) -> ConeMeasures:
+        """Return the measures of every caster of ``snapshot`` from the spot light ``pose``.
+
+        Parameters
+        ----------
+        pose : LightPose
+            The spot light.
+        snapshot : Snapshot
+            This frame's actors.
+
+        Returns
+        -------
+        ConeMeasures
+            One row per caster of ``snapshot``.
+        """
+        key = pose.key()
+        kept = self._measures
+        if kept is not None and key == self._key:
+            if snapshot is self._snapshot:
+                return kept
+            if self._snapshot is not None and snapshot.parent is self._snapshot:
+                patches = snapshot.patches(CASTERS)
+                measures = ConeMeasures(kept.near.copy(), kept.far.copy(), kept.spread.copy())
+                if patches:
+                    rows = [row for row, _ in patches]
+                    boxes = np.array([state.bounds for _, state in patches])
+                    fresh = _cone_measures(pose, _spot_rotation(pose), boxes)
+                    measures.near[rows], measures.far[rows] = fresh.near, fresh.far
+                    measures.spread[rows] = fresh.spread
+                self.measured += len(patches)
+                return self._keep(key, snapshot, measures)
+        boxes = snapshot.caster_bounds
+        self.measured += len(boxes)
+        return self._keep(key, snapshot, _cone_measures(pose, _spot_rotation(pose), boxes))
+
+    def _keep(self, key: tuple, snapshot: Snapshot, measures: ConeMeasures) -> ConeMeasures:
+        self._key, self._snapshot, self._measures = key, snapshot, measures
+        return measures
+
+
+def spot_shadowing_rows(
     pose: LightPose, casters: list[ActorState], snapshot: Snapshot
-) -> list[ActorState]:
-    """Return the casters that can shadow a receiver of a point or spot light.
+) -> np.ndarray:
+    """Return where the casters that can shadow a receiver of a point or spot light sit.
 
     A flat caster (a ground) with every other receiver on the light's side of
     it shadows nothing, as for a directional light.
@@ -126,17 +285,18 @@ def spot_shadowing_casters(
 
     Returns
     -------
-    list of ActorState
-        The casters that matter for the fit of the light's map.
+    numpy.ndarray
+        ``(n,)`` rows of the casters that matter for the fit of the light's map.
     """
-    keep = ~snapshot.caster_flat[snapshot.caster_rows(casters)]
+    rows = snapshot.caster_rows(casters)
+    keep = ~snapshot.caster_flat[rows]
     if keep.all():
-        return casters
+        return rows
     for row in np.flatnonzero(~keep).tolist():
         state = casters[row]
         away = state.bounds.mean(axis=0) - pose.position
         keep[row] = not _flat_and_lit_above(state, away, snapshot)
-    return list(compress(casters, keep.tolist()))
+    return rows[keep]
 
 
 @dataclass(frozen=True)
@@ -355,7 +515,7 @@ def sun_actors(pose: LightPose, snapshot: Snapshot) -> SunActors | None:
     if not keep.all():
         for row in np.flatnonzero(~keep).tolist():
             keep[row] = not _flat_and_lit_above(casters[row], pose.direction, snapshot)
-    shadowing = casters if keep.all() else list(compress(casters, keep.tolist()))
+    shadowing = snapshot.casters_at(np.flatnonzero(keep))
     if not shadowing:
         return None
     return SunActors(

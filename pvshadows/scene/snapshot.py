@@ -16,10 +16,9 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
-from itertools import repeat
-from operator import is_not
 
 import numpy as np
 
@@ -45,8 +44,10 @@ class ActorState:
     ----------
     actor : vtk.vtkActor
         The actor.
-    name : str
-        How messages name it.
+    namer : callable
+        Names an actor for messages (the plotter's
+        :class:`pvshadows.scene.naming.ActorNames`): :attr:`name` asks it
+        only when a message needs the name.
     triangles : ActorTriangles
         Its surface.
     matrix : numpy.ndarray
@@ -70,7 +71,7 @@ class ActorState:
     """
 
     actor: vtk.vtkActor
-    name: str
+    namer: Callable[[vtk.vtkActor], str] = field(repr=False)
     triangles: ActorTriangles
     matrix: np.ndarray
     bounds: np.ndarray
@@ -79,6 +80,11 @@ class ActorState:
     plane: bool = False
     transmittance: float = 0.0
     faces_drawn: bool = True
+
+    @cached_property
+    def name(self) -> str:
+        """How messages name it: asked once, when first needed (naming reads PyVista's wrappers)."""
+        return self.namer(self.actor)
 
     def model_matrix(self) -> np.ndarray:
         """Return the model-to-world matrix of :attr:`triangles`' centred points (float64).
@@ -302,6 +308,11 @@ class Snapshot:
         return self._stacked("caster_flat", CASTERS, lambda s: s.sheet is not None, ())
 
     @cached_property
+    def caster_transmittance(self) -> np.ndarray:
+        """:attr:`ActorState.transmittance` of :attr:`casters`, ``(n,)``."""
+        return self._stacked("caster_transmittance", CASTERS, lambda s: s.transmittance, ())
+
+    @cached_property
     def caster_triangles(self) -> np.ndarray:
         """Triangle counts of :attr:`casters`, ``(n,)``."""
         return self._stacked("caster_triangles", CASTERS, lambda s: s.triangles.n_triangles, ())
@@ -328,11 +339,16 @@ class Snapshot:
         if span is None:
             sheet = state.sheet
             assert sheet is not None  # asked of flat actors only
-            receivers = self.receivers
-            others = np.fromiter(map(is_not, receivers, repeat(state)), bool, len(receivers))
-            corners = self._receiver_corners[others].reshape(-1, 3)
-            heights = (corners - sheet.anchor) @ sheet.normal
-            span = (float(heights.min()), float(heights.max())) if len(heights) else _NO_SPAN
+            heights = (self._receiver_corners @ sheet.normal).reshape(len(self.receivers), 8)
+            row = self._receiver_rows.get(id(state))
+            if row is not None:
+                heights = np.delete(heights, row, axis=0)
+            offset = float(sheet.anchor @ sheet.normal)
+            span = (
+                (float(heights.min()) - offset, float(heights.max()) - offset)
+                if heights.size
+                else _NO_SPAN
+            )
             self._sheet_spans[id(state)] = span
         return span
 
@@ -342,7 +358,14 @@ class Snapshot:
 
     @cached_property
     def _receiver_corners(self) -> np.ndarray:
-        return box_corners(self.receiver_bounds)
+        """The eight corners of each receiver's bounds, ``(n * 8, 3)``, patched like the bounds."""
+        kept = self._inherited("_receiver_corners")
+        if kept is None:
+            return box_corners(self.receiver_bounds).reshape(-1, 3)
+        corners = kept.copy()  # type: ignore[attr-defined]
+        for row, state in self.patches(RECEIVERS):
+            corners[8 * row : 8 * row + 8] = box_corners(state.bounds[None])[0]
+        return corners
 
     def keys_of(self, casters: list[ActorState]) -> tuple:
         """Return :meth:`ActorState.key` of some of this snapshot's casters, as one tuple.
@@ -403,16 +426,69 @@ class Snapshot:
 
     @cached_property
     def _caster_rows(self) -> dict[int, int]:
-        kept = self._inherited("_caster_rows")
+        return self._rows_by_id("_caster_rows", CASTERS)
+
+    @cached_property
+    def _receiver_rows(self) -> dict[int, int]:
+        return self._rows_by_id("_receiver_rows", RECEIVERS)
+
+    def _rows_by_id(self, name: str, role: int) -> dict[int, int]:
+        """Map ``id(state)`` to its row in a role's list, or patch the parent's map."""
+        states = (self.casters, self.receivers)[role]
+        kept = self._inherited(name)
         if kept is None:
-            return {id(state): row for row, state in enumerate(self.casters)}
+            return {id(state): row for row, state in enumerate(states)}
         rows = dict(kept)  # type: ignore[call-overload]
         parent = self.parent
         assert parent is not None  # kept comes from it
-        for row, state in self.patches(CASTERS):
-            del rows[id(parent.casters[row])]
+        before = (parent.casters, parent.receivers)[role]
+        for row, state in self.patches(role):
+            del rows[id(before[row])]
             rows[id(state)] = row
         return rows
+
+    @cached_property
+    def _subsets(self) -> dict[int, tuple[list[ActorState], np.ndarray]]:
+        return {}
+
+    def casters_at(self, rows: np.ndarray) -> list[ActorState]:
+        """Return the casters in some rows of :attr:`casters`, remembering where they sit.
+
+        A list made here knows its rows: :meth:`caster_rows`, and through it
+        every stacked array gathered for it, costs no lookup per caster.
+
+        Parameters
+        ----------
+        rows : numpy.ndarray
+            ``(n,)`` increasing rows of :attr:`casters`.
+
+        Returns
+        -------
+        list of ActorState
+            Those casters, in order (:attr:`casters` itself when ``rows``
+            holds every row).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import pyvista as pv
+        >>> from pvshadows.scene.snapshot import SceneReader
+        >>> pl = pv.Plotter(off_screen=True)
+        >>> for x in range(3):
+        ...     _ = pl.add_mesh(pv.Cube(center=(2 * x, 0, 0)))
+        >>> snapshot = SceneReader(lambda actor: "a cube").read(pl.renderer)
+        >>> pair = snapshot.casters_at(np.array([0, 2]))
+        >>> snapshot.caster_rows(pair).tolist()
+        [0, 2]
+        """
+        casters = self.casters
+        if len(rows) == len(casters):
+            return casters
+        subset = [casters[row] for row in rows.tolist()]
+        rows = rows.copy()
+        rows.setflags(write=False)
+        self._subsets[id(subset)] = (subset, rows)
+        return subset
 
     def caster_rows(self, casters: list[ActorState]) -> np.ndarray:
         """Return where each of some of this snapshot's casters sits in :attr:`casters`.
@@ -429,6 +505,9 @@ class Snapshot:
         """
         if casters is self.casters:
             return np.arange(len(casters))
+        known = self._subsets.get(id(casters))
+        if known is not None and known[0] is casters:
+            return known[1]
         rows = self._caster_rows
         return np.fromiter(map(rows.__getitem__, map(id, casters)), np.intp, len(casters))
 
@@ -768,7 +847,7 @@ class SceneReader:
         receiver = self.receiving.get(key, True) and bool(actor.GetProperty().GetLighting())
         state = ActorState(
             actor,
-            self._names(actor),
+            self._names,
             triangles,
             matrix,
             world_bounds(triangles, matrix),

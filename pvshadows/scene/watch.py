@@ -104,6 +104,10 @@ class ModificationWatch:
     def watch(self, index: int, objects: Iterator[vtk.vtkObject] | list[vtk.vtkObject]) -> None:
         """Watch ``objects`` for the actor at ``index``, in place of what was watched for it.
 
+        An actor that moved or changed its points usually keeps the same
+        objects: their observers then stay as they are, since adding and
+        removing them costs more than the actor's whole new state.
+
         Parameters
         ----------
         index : int
@@ -111,6 +115,11 @@ class ModificationWatch:
         objects : iterable of vtk.vtkObject
             What its shadow depends on (:func:`watched_objects`).
         """
+        wanted = list(objects)
+        kept = self._observers.get(index)
+        if kept is not None and len(kept) == len(wanted):
+            if all(item is old for item, (old, _) in zip(wanted, kept, strict=True)):
+                return
         self.unwatch(index)
         suspects = self._suspects
 
@@ -118,7 +127,7 @@ class ModificationWatch:
             suspects.add(index)
 
         self._observers[index] = [
-            (item, item.AddObserver(vtk.vtkCommand.ModifiedEvent, mark)) for item in objects
+            (item, item.AddObserver(vtk.vtkCommand.ModifiedEvent, mark)) for item in wanted
         ]
 
     def unwatch(self, index: int) -> None:

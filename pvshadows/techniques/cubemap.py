@@ -29,6 +29,7 @@ from pvshadows.model.plan import Cast
 from pvshadows.model.report import PassReport
 from pvshadows.passes.cube_depth import CubeDepthPass, caster_face_masks
 from pvshadows.passes.transmittance import TranslucentCaster
+from pvshadows.scene.fitting import box_distances_squared
 from pvshadows.scene.lights import LightKind
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
@@ -93,15 +94,28 @@ def distance_range(position: np.ndarray, boxes: np.ndarray) -> tuple[float, floa
     >>> near, round(far, 3)
     (1.0, 2.474)
     """
-    nearest, far = math.inf, 0.0
-    if len(boxes):
-        lo, hi = boxes[:, 0] - position, boxes[:, 1] - position
-        outside = np.maximum(np.maximum(lo, -hi), 0.0)
-        corner = np.maximum(np.abs(lo), np.abs(hi))
-        # squared lengths compared, one square root each: the same order, fewer calls
-        nearest = math.sqrt(float(np.einsum("ij,ij->i", outside, outside).min()))
-        far = math.sqrt(float(np.einsum("ij,ij->i", corner, corner).max()))
-    return nearest, max(far * 1.01, SMALLEST_FAR)
+    return distance_range_of(*box_distances_squared(position, boxes))
+
+
+def distance_range_of(near: np.ndarray, far: np.ndarray) -> tuple[float, float]:
+    """Return :func:`distance_range` from the casters' squared distances.
+
+    Parameters
+    ----------
+    near, far : numpy.ndarray
+        ``(n,)`` squared distances to each caster's bounds and to their
+        farthest corner (:func:`pvshadows.scene.fitting.box_distances_squared`).
+
+    Returns
+    -------
+    tuple of float
+        ``(nearest, far)`` as :func:`distance_range` returns them.
+    """
+    if not len(near):
+        return math.inf, SMALLEST_FAR
+    # squared lengths compared, one square root each: the same order, fewer calls
+    nearest, farthest = math.sqrt(float(near.min())), math.sqrt(float(far.max()))
+    return nearest, max(farthest * 1.01, SMALLEST_FAR)
 
 
 class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
@@ -163,7 +177,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         """
         settings = plan.settings
         state = self._states.get(plan.key)
-        opaque, translucent = split_casters(plan.casters)
+        opaque, translucent = split_casters(plan.casters, context.snapshot)
         own = bool(translucent) or self.arrays is None
         if (
             state is None

@@ -11,7 +11,7 @@ casters; translucent ones go to its transmittance companion
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -25,9 +25,10 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.passes.map_depth import MapDepthPass
 from pvshadows.passes.transmittance import TranslucentCaster
 from pvshadows.scene.fitting import (
+    ConeMeasureCache,
     SunFit,
-    spot_fit,
-    spot_shadowing_casters,
+    spot_fit_within,
+    spot_shadowing_rows,
     sun_actors,
     sun_fit,
     sun_rotation,
@@ -35,7 +36,7 @@ from pvshadows.scene.fitting import (
 from pvshadows.scene.lights import LightKind
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
-from pvshadows.techniques.cubemap import distance_range
+from pvshadows.techniques.cubemap import distance_range_of
 from pvshadows.techniques.per_light import LightState, PerLightMaps, caster_draws
 from pvshadows.techniques.translucent import (
     Companion,
@@ -61,6 +62,7 @@ class MapState(LightState):
     range: tuple[float, float] = (0.0, 1.0)
     range_snapshot: object = None
     texel: float = 1.0
+    measures: ConeMeasureCache = field(default_factory=ConeMeasureCache)
     sun_actors: tuple | None = None
     fit_key: tuple | None = None
     fitted: SunFit | None = None
@@ -137,10 +139,13 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         ranged = inside or context.snapshot.casters
         range_key = (pose.key(), settings.resolution, context.snapshot.keys_of(ranged))
         if range_key != state.range_key or state.range_snapshot is not context.snapshot:
-            nearest, far = distance_range(pose.position, context.snapshot.bounds_of(ranged))
-            shadowing = spot_shadowing_casters(pose, inside, context.snapshot)
-            boxes = context.snapshot.bounds_of(shadowing)
-            fit = spot_fit(pose, settings.resolution, far * 1e-4, far, boxes)
+            snapshot = context.snapshot
+            measures = state.measures.of(pose, snapshot)
+            ranged_rows = snapshot.caster_rows(ranged)
+            nearest, far = distance_range_of(measures.near[ranged_rows], measures.far[ranged_rows])
+            shadowing = spot_shadowing_rows(pose, inside, snapshot)
+            spread = float(measures.spread[shadowing].max()) if len(shadowing) else None
+            fit = spot_fit_within(pose, settings.resolution, far * 1e-4, far, spread)
             state.range_key, state.range = range_key, (nearest, far)
             state.range_snapshot = context.snapshot
             state.world_to_light = translation(-pose.position)
@@ -231,7 +236,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         detail: str,
         settings: ShadowSettings,
     ) -> list[PassReport]:
-        opaque, translucent = split_casters(casters)
+        opaque, translucent = split_casters(casters, context.snapshot)
         companion = self._render_companion(
             state, key, translucent, context, depth_range, along_z=along_z, settings=settings
         )

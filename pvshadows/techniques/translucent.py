@@ -18,18 +18,23 @@ from pvshadows import _vtk as vtk
 from pvshadows.gl.transmittance_textures import TransmittanceCube, TransmittanceTexture
 from pvshadows.model.report import PassReport
 from pvshadows.passes.transmittance import PASS_NAME, TransmittancePass
-from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.snapshot import ActorState, Snapshot
 
 _TRANSMITTANCE = attrgetter("transmittance")
 
 
-def split_casters(casters: list[ActorState]) -> tuple[list[ActorState], list[ActorState]]:
+def split_casters(
+    casters: list[ActorState], snapshot: Snapshot | None = None
+) -> tuple[list[ActorState], list[ActorState]]:
     """Split casters into the opaque ones and the translucent ones.
 
     Parameters
     ----------
     casters : list of ActorState
         A light's casters.
+    snapshot : Snapshot, optional
+        The snapshot they belong to: its stacked transmittances tell at once
+        that all are opaque (the common case), without a look at each state.
 
     Returns
     -------
@@ -46,7 +51,10 @@ def split_casters(casters: list[ActorState]) -> tuple[list[ActorState], list[Act
     >>> split_casters([glass, stone, air]) == ([stone], [glass])
     True
     """
-    if not any(map(_TRANSMITTANCE, casters)):
+    if snapshot is not None:
+        if not snapshot.caster_transmittance[snapshot.caster_rows(casters)].any():
+            return casters, []
+    elif not any(map(_TRANSMITTANCE, casters)):
         return casters, []
     opaque = [c for c in casters if c.transmittance <= 0.0]
     translucent = [c for c in casters if 0.0 < c.transmittance < 1.0]
