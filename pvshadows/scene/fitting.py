@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -125,7 +125,16 @@ def spot_fit_within(
 
 
 def _spot_rotation(pose: LightPose) -> np.ndarray:
-    return look_rotation(pose.direction, _up_for(pose.direction))
+    return _rotation_along(tuple(pose.direction.tolist()))
+
+
+@lru_cache(maxsize=256)
+def _rotation_along(direction: tuple[float, float, float]) -> np.ndarray:
+    """Return a spot map's rotation, worked out once per direction (read-only)."""
+    forward = np.array(direction)
+    rotation = look_rotation(forward, _up_for(forward))
+    rotation.setflags(write=False)
+    return rotation
 
 
 def box_distances_squared(position: np.ndarray, boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -182,9 +191,12 @@ def _cone_measures(pose: LightPose, rotation: np.ndarray, boxes: np.ndarray) -> 
     near, far = box_distances_squared(pose.position, boxes)
     local = ((box_corners(boxes) - pose.position) @ rotation[:3, :3].T).reshape(-1, 8, 3)
     depth = -local[..., 2]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        spread = (np.abs(local[..., :2]) / depth[..., None]).max(axis=(1, 2))
-    spread[~(depth > 0.0).all(axis=1)] = np.inf
+    in_front = (depth > 0.0).all(axis=1)
+    # a box with a corner beside or behind the light spreads without bound: divided by 1
+    # here (no warning), then marked infinite
+    depth[~in_front] = 1.0
+    spread = (np.abs(local[..., :2]) / depth[..., None]).max(axis=(1, 2))
+    spread[~in_front] = np.inf
     return ConeMeasures(near, far, spread)
 
 
@@ -248,22 +260,30 @@ class ConeMeasureCache:
                 return kept
             if self._snapshot is not None and snapshot.parent is self._snapshot:
                 patches = snapshot.patches(CASTERS)
-                measures = ConeMeasures(kept.near.copy(), kept.far.copy(), kept.spread.copy())
+                self.measured += len(patches)
+                self._snapshot = snapshot
                 if patches:
                     rows = [row for row, _ in patches]
                     boxes = np.array([state.bounds for _, state in patches])
                     fresh = _cone_measures(pose, _spot_rotation(pose), boxes)
-                    measures.near[rows], measures.far[rows] = fresh.near, fresh.far
-                    measures.spread[rows] = fresh.spread
-                self.measured += len(patches)
-                return self._keep(key, snapshot, measures)
+                    self._measures = kept = ConeMeasures(
+                        _patched(kept.near, rows, fresh.near),
+                        _patched(kept.far, rows, fresh.far),
+                        _patched(kept.spread, rows, fresh.spread),
+                    )
+                return kept
+        self._key, self._snapshot = key, snapshot
         boxes = snapshot.caster_bounds
         self.measured += len(boxes)
-        return self._keep(key, snapshot, _cone_measures(pose, _spot_rotation(pose), boxes))
+        self._measures = _cone_measures(pose, _spot_rotation(pose), boxes)
+        return self._measures
 
-    def _keep(self, key: tuple, snapshot: Snapshot, measures: ConeMeasures) -> ConeMeasures:
-        self._key, self._snapshot, self._measures = key, snapshot, measures
-        return measures
+
+def _patched(values: np.ndarray, rows: list[int], fresh: np.ndarray) -> np.ndarray:
+    """Return a copy of ``values`` with ``fresh`` in ``rows`` (the kept array stays as it was)."""
+    patched = values.copy()
+    patched[rows] = fresh
+    return patched
 
 
 def spot_shadowing_rows(
