@@ -460,3 +460,17 @@ def test_a_spots_measures_patched_over_moved_actors_match_measures_taken_afresh(
     assert state.measures.measured == len(shadows.snapshot.casters) + 2 * len(movers)
     for name in ("near", "far", "spread"):
         assert getattr(patched, name).tolist() == getattr(fresh, name).tolist()
+
+
+def test_a_snapshot_remembers_the_rows_of_its_latest_subsets_only():
+    import numpy as np
+
+    from pvshadows.scene.snapshot import KEPT_SUBSETS
+
+    pl, _ = crowd()
+    snapshot = pl.shadows._renderers[0].snapshot
+    made = [snapshot.casters_at(np.array([0, row])) for row in range(1, 3 * KEPT_SUBSETS)]
+    assert len(snapshot._subsets) == KEPT_SUBSETS
+    # the oldest, forgotten, and the newest, remembered, are found at the same rows
+    newest = 3 * KEPT_SUBSETS - 1
+    assert [snapshot.caster_rows(made[i]).tolist() for i in (0, -1)] == [[0, 1], [0, newest]]

@@ -167,6 +167,8 @@ class Sheet:
 
 #: Roles of :meth:`Snapshot.patches`: the casters, the receivers, every actor.
 CASTERS, RECEIVERS, ALL_ACTORS = 0, 1, 2
+#: Lists made by :meth:`Snapshot.casters_at` whose rows a snapshot remembers (the latest).
+KEPT_SUBSETS = 16
 
 
 @dataclass(eq=False)
@@ -455,7 +457,9 @@ class Snapshot:
         """Return the casters in some rows of :attr:`casters`, remembering where they sit.
 
         A list made here knows its rows: :meth:`caster_rows`, and through it
-        every stacked array gathered for it, costs no lookup per caster.
+        every stacked array gathered for it, costs no lookup per caster. The
+        snapshot remembers the latest :data:`KEPT_SUBSETS` such lists; an
+        older one is looked up caster by caster.
 
         Parameters
         ----------
@@ -487,7 +491,10 @@ class Snapshot:
         subset = [casters[row] for row in rows.tolist()]
         rows = rows.copy()
         rows.setflags(write=False)
-        self._subsets[id(subset)] = (subset, rows)
+        subsets = self._subsets
+        if len(subsets) >= KEPT_SUBSETS:  # a light moving over a still scene makes one a frame
+            del subsets[next(iter(subsets))]
+        subsets[id(subset)] = (subset, rows)
         return subset
 
     def caster_rows(self, casters: list[ActorState]) -> np.ndarray:
