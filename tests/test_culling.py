@@ -62,3 +62,37 @@ def test_one_box_tested_alone_gets_the_answer_it_gets_among_many(seed):
         assert np.array_equal(alone, together)
         inside += int(together.sum())
     assert 0 < inside < 40 * 100
+
+
+def _faces_by_plane(box: np.ndarray) -> int:
+    """A cube face's pyramid against a box, plane by plane: its forward plane and four sides."""
+    from pvshadows.geometry.transforms import CUBE_FACE_AXES
+
+    mask = 0
+    for face, (forward, _) in enumerate(CUBE_FACE_AXES):
+        axis = int(np.argmax(np.abs(forward)))
+        normals = [np.array(forward)]
+        for other in (o for o in range(3) if o != axis):
+            for side in (-1.0, 1.0):
+                normal = np.array(forward)
+                normal[other] = side
+                normals.append(normal)
+        # a box may overlap a half-space when its farthest corner along the normal is in it
+        if all(np.maximum(n * box[0], n * box[1]).sum() >= 0.0 for n in normals):
+            mask |= 1 << face
+    return mask
+
+
+@pytest.mark.parametrize("scale", [1e-6, 1.0, 1e9])
+def test_cube_faces_touching_boxes_match_a_test_plane_by_plane(scale):
+    from pvshadows.geometry.transforms import faces_touching_boxes
+
+    rng = np.random.default_rng(7)
+    boxes = rng.normal(size=(400, 2, 3)) * scale
+    boxes[:40, 1] = boxes[:40, 0]  # points
+    boxes[40:80, :, 2] = 0.0  # flat in the plane of two faces' edges
+    boxes = np.sort(boxes, axis=1)
+    expected = [_faces_by_plane(box) for box in boxes]
+    assert faces_touching_boxes(boxes).tolist() == expected
+    # boxes seen by one face only, and boxes around the light, seen by all six
+    assert {1, 63} <= set(expected)

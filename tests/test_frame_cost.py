@@ -444,7 +444,8 @@ def test_a_caster_is_tested_for_closure_only_when_a_light_culls_front_faces(monk
 
 
 def test_a_spots_measures_patched_over_moved_actors_match_measures_taken_afresh():
-    from pvshadows.scene.fitting import ConeMeasureCache
+    from pvshadows.scene.fitting import cone_measures
+    from pvshadows.scene.measures import CasterMeasureCache
 
     pl, _ = crowd()
     shadows = pl.shadows._renderers[0]
@@ -456,7 +457,7 @@ def test_a_spots_measures_patched_over_moved_actors_match_measures_taken_afresh(
     cast = shadows.plans[0].cast
     (state,) = shadows.technique("map")._states.values()
     patched = state.measures.of(cast.pose, shadows.snapshot)
-    fresh = ConeMeasureCache().of(cast.pose, shadows.snapshot)
+    fresh = CasterMeasureCache(cone_measures).of(cast.pose, shadows.snapshot)
     assert state.measures.measured == len(shadows.snapshot.casters) + 2 * len(movers)
     for name in ("near", "far", "spread"):
         assert getattr(patched, name).tolist() == getattr(fresh, name).tolist()
@@ -474,3 +475,21 @@ def test_a_snapshot_remembers_the_rows_of_its_latest_subsets_only():
     # the oldest, forgotten, and the newest, remembered, are found at the same rows
     newest = 3 * KEPT_SUBSETS - 1
     assert [snapshot.caster_rows(made[i]).tolist() for i in (0, -1)] == [[0, 1], [0, newest]]
+
+
+def test_a_point_light_measures_only_the_moved_actor_for_its_cube():
+    scene = standard_scene(window_size=(200, 150), light="point")
+    pl = scene.plotter
+    pl.shadows.enable(lights=[scene.light])
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    (state,) = shadows.technique("cubemap")._states.values()
+    casters = len(shadows.snapshot.casters)
+    assert state.measures.measured == casters
+    scene.sphere.AddPosition(0.05, 0.0, 0.0)
+    draw(pl)
+    assert state.measures.measured == casters + 1
+    assert pl.shadows.last_frame.passes_run == 1
+    scene.light.position = (0.5, -0.25, 6.0)
+    draw(pl)
+    assert state.measures.measured == 2 * casters + 1

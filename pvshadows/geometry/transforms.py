@@ -168,30 +168,22 @@ def faces_touching_boxes(boxes: np.ndarray) -> np.ndarray:
     """
     boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
     low, high = boxes[:, 0], boxes[:, 1]
-    # in front of the face's plane through the light, and inside its four side planes
-    ahead = np.maximum(low @ _FACE_FORWARD.T, high @ _FACE_FORWARD.T) >= 0.0
-    sides = np.maximum(_FACE_SIDES * low[:, None, None], _FACE_SIDES * high[:, None, None])
-    inside = ahead & (sides.sum(axis=3) >= 0.0).all(axis=2)
+    # A face's planes each weigh two axes, so a box's farthest reach along one is the
+    # sum of its reaches along the two: along +axis ``high``, along -axis ``-low``.
+    reach = np.stack([high, -low], axis=1)  # (n, sign, axis)
+    ahead = reach[:, _FACE_SIGN, _FACE_AXIS]  # (n, face): past the face's plane through the light
+    # inside its four side planes: the nearer of the two reaches along each other axis
+    across = np.minimum(high, -low)[:, _FACE_OTHERS]  # (n, face, 2)
+    inside = (ahead >= 0.0) & (ahead[:, :, None] + across >= 0.0).all(axis=2)
     return inside.astype(np.int64) @ _FACE_BITS
 
 
-def _face_sides(forward: tuple[float, float, float]) -> list[np.ndarray]:
-    """Return the normals of the four side planes of a face's 90-degree pyramid."""
-    axis = int(np.argmax(np.abs(forward)))
-    normals = []
-    for other in range(3):
-        if other != axis:
-            for side in (-1.0, 1.0):
-                normal = np.zeros(3)
-                normal[axis], normal[other] = forward[axis], side
-                normals.append(normal)
-    return normals
-
-
-#: Each face's rotation, its forward axis, its side planes' normals and its bit.
+#: Each face's rotation, the axis it looks along, its sign (0: +, 1: -), the two other
+#: axes (its side planes' second axes) and its bit.
 _FACE_ROTATIONS = np.stack([cube_face_rotation(face) for face in range(6)])
-_FACE_FORWARD = np.array([forward for forward, _ in CUBE_FACE_AXES])
-_FACE_SIDES = np.array([_face_sides(forward) for forward, _ in CUBE_FACE_AXES])
+_FACE_AXIS = np.array([int(np.argmax(np.abs(forward))) for forward, _ in CUBE_FACE_AXES])
+_FACE_SIGN = np.array([int(sum(forward) < 0.0) for forward, _ in CUBE_FACE_AXES])
+_FACE_OTHERS = np.array([[o for o in range(3) if o != axis] for axis in _FACE_AXIS])
 _FACE_BITS = 1 << np.arange(6)
 
 

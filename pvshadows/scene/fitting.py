@@ -12,13 +12,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
+from typing import NamedTuple
 
 import numpy as np
 
 from pvshadows.geometry.transforms import look_rotation, perspective, translation
 from pvshadows.scene.culling import box_corners
 from pvshadows.scene.lights import LightPose
-from pvshadows.scene.snapshot import CASTERS, ActorState, Snapshot
+from pvshadows.scene.snapshot import ActorState, Snapshot
 
 #: Sizes of the sun's map are rounded up to steps of 2 ** (1 / SIZE_STEPS_PER_OCTAVE).
 SIZE_STEPS_PER_OCTAVE = 8
@@ -89,7 +90,7 @@ def spot_fit(
     spread = None
     if boxes is not None and len(boxes):
         boxes = np.asarray(boxes, dtype=np.float64)
-        spread = float(_cone_measures(pose, _spot_rotation(pose), boxes).spread.max())
+        spread = float(cone_measures(pose, boxes).spread.max())
     return spot_fit_within(pose, resolution, near, far, spread)
 
 
@@ -167,8 +168,7 @@ def box_distances_squared(position: np.ndarray, boxes: np.ndarray) -> tuple[np.n
     return np.einsum("ij,ij->i", outside, outside), np.einsum("ij,ij->i", corner, corner)
 
 
-@dataclass(frozen=True)
-class ConeMeasures:
+class ConeMeasures(NamedTuple):
     """What a spot light's map is fitted to, for each caster of a snapshot.
 
     Attributes
@@ -187,8 +187,33 @@ class ConeMeasures:
     spread: np.ndarray
 
 
-def _cone_measures(pose: LightPose, rotation: np.ndarray, boxes: np.ndarray) -> ConeMeasures:
+def cone_measures(pose: LightPose, boxes: np.ndarray) -> ConeMeasures:
+    """Measure casters' bounds from a spot light, for its map's range and fit.
+
+    Parameters
+    ----------
+    pose : LightPose
+        The spot light.
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` world bounds.
+
+    Returns
+    -------
+    ConeMeasures
+        One row per box.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.fitting import cone_measures
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 45.0)
+    >>> boxes = np.array([[[-1.0, -1, -4], [1, 1, -2]], [[-1.0, -1, -1], [1, 1, 1]]])
+    >>> cone_measures(pose, boxes).spread.tolist()
+    [0.5, inf]
+    """
     near, far = box_distances_squared(pose.position, boxes)
+    rotation = _spot_rotation(pose)
     local = ((box_corners(boxes) - pose.position) @ rotation[:3, :3].T).reshape(-1, 8, 3)
     depth = -local[..., 2]
     in_front = (depth > 0.0).all(axis=1)
@@ -198,92 +223,6 @@ def _cone_measures(pose: LightPose, rotation: np.ndarray, boxes: np.ndarray) -> 
     spread = (np.abs(local[..., :2]) / depth[..., None]).max(axis=(1, 2))
     spread[~in_front] = np.inf
     return ConeMeasures(near, far, spread)
-
-
-class ConeMeasureCache:
-    """A spot light's :class:`ConeMeasures`, kept while the light stays where it is.
-
-    When only some casters changed since the snapshot they were measured
-    in (:meth:`pvshadows.scene.snapshot.Snapshot.successor`), only those
-    are measured again: an actor that moved costs its own box, not the
-    scene's.
-
-    Attributes
-    ----------
-    measured : int
-        Casters measured so far (for tests).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> import pyvista as pv
-    >>> from pvshadows.scene.fitting import ConeMeasureCache
-    >>> from pvshadows.scene.lights import LightKind, LightPose
-    >>> from pvshadows.scene.snapshot import SceneReader
-    >>> pl = pv.Plotter(off_screen=True)
-    >>> boxes = [pl.add_mesh(pv.Cube(center=(x, 0, -5))) for x in (-1, 1)]
-    >>> reader = SceneReader(lambda actor: "a cube")
-    >>> pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 45.0)
-    >>> cache = ConeMeasureCache()
-    >>> cache.of(pose, reader.read(pl.renderer)).near.round(2).tolist()
-    [20.5, 20.5]
-    >>> boxes[1].position = (0, 0, 1)
-    >>> cache.of(pose, reader.read(pl.renderer)).near.round(2).tolist(), cache.measured
-    ([20.5, 12.5], 3)
-    """
-
-    def __init__(self) -> None:
-        self._key: tuple | None = None
-        self._snapshot: Snapshot | None = None
-        self._measures: ConeMeasures | None = None
-        self.measured = 0
-
-    def of(self, pose: LightPose, snapshot: Snapshot) -> ConeMeasures:
-        """Return the measures of every caster of ``snapshot`` from the spot light ``pose``.
-
-        Parameters
-        ----------
-        pose : LightPose
-            The spot light.
-        snapshot : Snapshot
-            This frame's actors.
-
-        Returns
-        -------
-        ConeMeasures
-            One row per caster of ``snapshot``.
-        """
-        key = pose.key()
-        kept = self._measures
-        if kept is not None and key == self._key:
-            if snapshot is self._snapshot:
-                return kept
-            if self._snapshot is not None and snapshot.parent is self._snapshot:
-                patches = snapshot.patches(CASTERS)
-                self.measured += len(patches)
-                self._snapshot = snapshot
-                if patches:
-                    rows = [row for row, _ in patches]
-                    boxes = np.array([state.bounds for _, state in patches])
-                    fresh = _cone_measures(pose, _spot_rotation(pose), boxes)
-                    self._measures = kept = ConeMeasures(
-                        _patched(kept.near, rows, fresh.near),
-                        _patched(kept.far, rows, fresh.far),
-                        _patched(kept.spread, rows, fresh.spread),
-                    )
-                return kept
-        self._key, self._snapshot = key, snapshot
-        boxes = snapshot.caster_bounds
-        self.measured += len(boxes)
-        self._measures = _cone_measures(pose, _spot_rotation(pose), boxes)
-        return self._measures
-
-
-def _patched(values: np.ndarray, rows: list[int], fresh: np.ndarray) -> np.ndarray:
-    """Return a copy of ``values`` with ``fresh`` in ``rows`` (the kept array stays as it was)."""
-    patched = values.copy()
-    patched[rows] = fresh
-    return patched
 
 
 def spot_shadowing_rows(

@@ -15,7 +15,8 @@ companion, outside the arrays.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -30,7 +31,8 @@ from pvshadows.model.report import PassReport
 from pvshadows.passes.cube_depth import CubeDepthPass, caster_face_masks
 from pvshadows.passes.transmittance import TranslucentCaster
 from pvshadows.scene.fitting import box_distances_squared
-from pvshadows.scene.lights import LightKind
+from pvshadows.scene.lights import LightKind, LightPose
+from pvshadows.scene.measures import CasterMeasureCache
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
@@ -64,21 +66,24 @@ class CubeState(LightState):
     #: The plan the cube was last brought up to date for: a plan kept by the planner
     #: (nothing but the camera moved) finds the cube still right.
     planned: Cast | None = None
+    measures: CasterMeasureCache[CubeMeasures] = field(
+        default_factory=lambda: CasterMeasureCache(cube_measures)
+    )
 
     def release_map(self) -> None:
         """Release the cube."""
         self.cube.release()
 
 
-def distance_range(position: np.ndarray, boxes: np.ndarray) -> tuple[float, float]:
+def distance_range(near: np.ndarray, far: np.ndarray) -> tuple[float, float]:
     """Return the nearest and farthest distance from a light to its casters' bounds.
 
     Parameters
     ----------
-    position : numpy.ndarray
-        The light's position.
-    boxes : numpy.ndarray
-        ``(n, 2, 3)`` the casters' world bounds.
+    near, far : numpy.ndarray
+        ``(n,)`` squared distances from the light to each caster's bounds and
+        to their farthest corner
+        (:func:`pvshadows.scene.fitting.box_distances_squared`).
 
     Returns
     -------
@@ -89,33 +94,64 @@ def distance_range(position: np.ndarray, boxes: np.ndarray) -> tuple[float, floa
     Examples
     --------
     >>> import numpy as np
+    >>> from pvshadows.scene.fitting import box_distances_squared
     >>> from pvshadows.techniques.cubemap import distance_range
-    >>> near, far = distance_range(np.zeros(3), np.array([[[1.0, -1, -1], [2, 1, 1]]]))
+    >>> squares = box_distances_squared(np.zeros(3), np.array([[[1.0, -1, -1], [2, 1, 1]]]))
+    >>> near, far = distance_range(*squares)
     >>> near, round(far, 3)
     (1.0, 2.474)
-    """
-    return distance_range_of(*box_distances_squared(position, boxes))
-
-
-def distance_range_of(near: np.ndarray, far: np.ndarray) -> tuple[float, float]:
-    """Return :func:`distance_range` from the casters' squared distances.
-
-    Parameters
-    ----------
-    near, far : numpy.ndarray
-        ``(n,)`` squared distances to each caster's bounds and to their
-        farthest corner (:func:`pvshadows.scene.fitting.box_distances_squared`).
-
-    Returns
-    -------
-    tuple of float
-        ``(nearest, far)`` as :func:`distance_range` returns them.
     """
     if not len(near):
         return math.inf, SMALLEST_FAR
     # squared lengths compared, one square root each: the same order, fewer calls
     nearest, farthest = math.sqrt(float(near.min())), math.sqrt(float(far.max()))
     return nearest, max(farthest * 1.01, SMALLEST_FAR)
+
+
+class CubeMeasures(NamedTuple):
+    """What a point light's cube is drawn with, for each caster of a snapshot.
+
+    Attributes
+    ----------
+    near, far : numpy.ndarray
+        ``(n,)`` squared distances from the light to each caster's bounds
+        and to their farthest corner.
+    faces : numpy.ndarray
+        ``(n,)`` bit masks of the cube faces each caster may touch
+        (:func:`pvshadows.passes.cube_depth.caster_face_masks`).
+    """
+
+    near: np.ndarray
+    far: np.ndarray
+    faces: np.ndarray
+
+
+def cube_measures(pose: LightPose, boxes: np.ndarray) -> CubeMeasures:
+    """Measure casters' bounds from a point light, for its cube's range and faces.
+
+    Parameters
+    ----------
+    pose : LightPose
+        The light.
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` world bounds.
+
+    Returns
+    -------
+    CubeMeasures
+        One row per box.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> from pvshadows.techniques.cubemap import cube_measures
+    >>> pose = LightPose(LightKind.POINT, np.zeros(3), np.array([0, 0, -1.0]), 180.0)
+    >>> cube_measures(pose, np.array([[[2.0, -0.5, -0.5], [3, 0.5, 0.5]]])).faces.tolist()
+    [1]
+    """
+    near, far = box_distances_squared(pose.position, boxes)
+    return CubeMeasures(near, far, caster_face_masks(boxes - pose.position))
 
 
 class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
@@ -192,10 +228,10 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             reused = f"light and casters unchanged since frame {state.frame}: map still right"
             return [PassReport("cube depth", "reused", reused)]
         state.planned = None
-        position = plan.pose.position
-        state.nearest, state.far = distance_range(
-            position, context.snapshot.bounds_of(plan.casters)
-        )
+        position, snapshot = plan.pose.position, context.snapshot
+        measures = state.measures.of(plan.pose, snapshot)
+        rows = snapshot.caster_rows(plan.casters)
+        state.nearest, state.far = distance_range(measures.near[rows], measures.far[rows])
         companion = self._update_companion(plan, context, state, translucent)
         state.drawn = bool(opaque)
         if not opaque:
@@ -216,7 +252,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         casters = caster_draws(
             opaque, translation(-position), context.snapshot, context.buffers, settings
         )
-        masks = caster_face_masks(context.snapshot.bounds_of(opaque) - position)
+        masks = measures.faces[snapshot.caster_rows(opaque)]
         assert self._pass is not None
         reports = self._pass.render(
             state.cube, casters, masks, state.far, settings.passes, context.timer

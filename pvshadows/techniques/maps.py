@@ -25,8 +25,9 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.passes.map_depth import MapDepthPass
 from pvshadows.passes.transmittance import TranslucentCaster
 from pvshadows.scene.fitting import (
-    ConeMeasureCache,
+    ConeMeasures,
     SunFit,
+    cone_measures,
     spot_fit_within,
     spot_shadowing_rows,
     sun_actors,
@@ -34,9 +35,10 @@ from pvshadows.scene.fitting import (
     sun_rotation,
 )
 from pvshadows.scene.lights import LightKind
+from pvshadows.scene.measures import CasterMeasureCache
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
-from pvshadows.techniques.cubemap import distance_range_of
+from pvshadows.techniques.cubemap import distance_range
 from pvshadows.techniques.per_light import LightState, PerLightMaps, caster_draws
 from pvshadows.techniques.translucent import (
     Companion,
@@ -62,7 +64,9 @@ class MapState(LightState):
     range: tuple[float, float] = (0.0, 1.0)
     range_snapshot: object = None
     texel: float = 1.0
-    measures: ConeMeasureCache = field(default_factory=ConeMeasureCache)
+    measures: CasterMeasureCache[ConeMeasures] = field(
+        default_factory=lambda: CasterMeasureCache(cone_measures)
+    )
     sun_actors: tuple | None = None
     fit_key: tuple | None = None
     fitted: SunFit | None = None
@@ -142,7 +146,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             snapshot = context.snapshot
             measures = state.measures.of(pose, snapshot)
             ranged_rows = snapshot.caster_rows(ranged)
-            nearest, far = distance_range_of(measures.near[ranged_rows], measures.far[ranged_rows])
+            nearest, far = distance_range(measures.near[ranged_rows], measures.far[ranged_rows])
             shadowing = spot_shadowing_rows(pose, inside, snapshot)
             spread = float(measures.spread[shadowing].max()) if len(shadowing) else None
             fit = spot_fit_within(pose, settings.resolution, far * 1e-4, far, spread)
