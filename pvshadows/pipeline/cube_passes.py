@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import lru_cache
 
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.snapshot import ActorState, Snapshot
@@ -48,10 +49,20 @@ def cube_passes(
     """
     triangles = int(snapshot.caster_triangles[snapshot.caster_rows(casters)].sum())
     if triangles < SIX_PASSES_FROM:
-        return replace(settings, passes="single")
+        return _with_passes(settings, "single")
     notes.append(
         f"its casters hold {triangles:,} triangles: the cube is filled one face at a time, "
         "each face drawing the casters in its frustum, faster than a geometry shader "
         "sending every triangle to the faces"
     )
-    return replace(settings, passes="six")
+    return _with_passes(settings, "six")
+
+
+@lru_cache(maxsize=64)
+def _with_passes(settings: ShadowSettings, passes: str) -> ShadowSettings:
+    """Return ``settings`` with ``passes`` set: the same object for the same choice.
+
+    A light that moves is planned again each frame; the same settings object
+    spares the copy and lets the next frame's plan compare it by identity.
+    """
+    return replace(settings, passes=passes)

@@ -14,6 +14,7 @@ faces without casters) it reports in the same frame's words.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import fields, replace
 from functools import cached_property
@@ -395,11 +396,11 @@ def _plan_light(
         plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
         return plan, use
     plan.notes.append(why)
-    bounds = snapshot.caster_bounds[hits]
+    box = snapshot.casters_box if within is casters else _box_around(snapshot.caster_bounds[hits])
     if technique == "cubemap" and pose.kind is LightKind.POINT:
-        technique, pose = _fit_far_point(pose, bounds, plan.notes)
+        technique, pose = _fit_far_point(pose, box, plan.notes)
     elif technique == "map" and pose.kind is LightKind.SPOT:
-        seen_from = _casters_seen_from(pose, bounds)
+        seen_from = _casters_seen_from(pose, box)
         if _far(seen_from):
             pose, use = _fit_far_spot(pose, seen_from, shared.seen, plan.notes), EVERY_RECEIVER
     if technique == "cubemap" and settings.passes == "auto":
@@ -430,13 +431,20 @@ def _fields_of(cast: Cast) -> dict[str, Any]:
     return {f.name: getattr(cast, f.name) for f in fields(Cast)}
 
 
-def _casters_seen_from(pose: LightPose, bounds: np.ndarray) -> tuple[float, float, np.ndarray]:
-    """Return the bounding radius of casters' ``(n, 2, 3)`` bounds, its distance and direction."""
-    lo, hi = bounds[:, 0].min(axis=0), bounds[:, 1].max(axis=0)
-    centre = (lo + hi) / 2.0
-    distance = float(np.linalg.norm(centre - pose.position))
-    radius = float(np.linalg.norm(hi - lo)) / 2.0
-    return radius, distance, (centre - pose.position) / max(distance, 1e-300)
+def _box_around(bounds: np.ndarray) -> np.ndarray:
+    """Return the ``(2, 3)`` box around ``(n, 2, 3)`` bounds."""
+    return np.array([bounds[:, 0].min(axis=0), bounds[:, 1].max(axis=0)])
+
+
+def _casters_seen_from(pose: LightPose, box: np.ndarray) -> tuple[float, float, np.ndarray]:
+    """Return the radius of the sphere around casters' ``(2, 3)`` box, its distance, direction."""
+    # plain floats for three-vectors: numpy's per-call cost outweighs its speed here
+    lo, hi = box.tolist()
+    centre = [(a + b) / 2.0 for a, b in zip(lo, hi, strict=True)]
+    away = [c - p for c, p in zip(centre, pose.position.tolist(), strict=True)]
+    distance = math.hypot(*away)
+    radius = math.dist(lo, hi) / 2.0
+    return radius, distance, np.array(away) / max(distance, 1e-300)
 
 
 def _parallel(
@@ -480,15 +488,15 @@ def _fit_far_spot(
     return _parallel(pose, radius, distance, direction, notes)
 
 
-def _fit_far_point(pose: LightPose, bounds: np.ndarray, notes: list[str]) -> tuple[str, LightPose]:
+def _fit_far_point(pose: LightPose, box: np.ndarray, notes: list[str]) -> tuple[str, LightPose]:
     """Give a point light whose casters subtend a small angle a perspective map of their cone.
 
     Seen from far away, casters cover a few texels of one cube face and the
     texel-sized biases swallow their shadows; a map aimed at them spends
     every texel on them, at any distance. Receivers outside the cone stay
-    lit (nothing there can shadow them). ``bounds`` are the casters' ``(n, 2, 3)``.
+    lit (nothing there can shadow them). ``box`` is the ``(2, 3)`` box around the casters.
     """
-    radius, distance, direction = _casters_seen_from(pose, bounds)
+    radius, distance, direction = _casters_seen_from(pose, box)
     if distance <= radius / np.sin(np.radians(FIT_CONE_BELOW)):
         return "cubemap", pose
     half = float(np.degrees(np.arcsin(radius / distance)))

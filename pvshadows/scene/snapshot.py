@@ -411,6 +411,14 @@ class Snapshot:
         return np.array([bounds[:, 0].min(axis=0), bounds[:, 1].max(axis=0)])
 
     @cached_property
+    def casters_box(self) -> np.ndarray:
+        """World bounds of all :attr:`casters` together, ``(2, 3)`` (NaN when there are none)."""
+        bounds = self.caster_bounds
+        if not len(bounds):
+            return np.full((2, 3), np.nan)
+        return np.array([bounds[:, 0].min(axis=0), bounds[:, 1].max(axis=0)])
+
+    @cached_property
     def caster_models(self) -> np.ndarray:
         """Model matrices of :attr:`casters` (:meth:`ActorState.model_matrix`), ``(n, 4, 4)``."""
         return self._stacked("caster_models", CASTERS, ActorState.model_matrix, (4, 4))
