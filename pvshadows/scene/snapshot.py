@@ -315,6 +315,11 @@ class Snapshot:
         return self._stacked("caster_transmittance", CASTERS, lambda s: s.transmittance, ())
 
     @cached_property
+    def some_caster_translucent(self) -> bool:
+        """Whether some caster lets light through (:attr:`ActorState.transmittance` above 0)."""
+        return bool(self.caster_transmittance.any())
+
+    @cached_property
     def caster_triangles(self) -> np.ndarray:
         """Triangle counts of :attr:`casters`, ``(n,)``."""
         return self._stacked("caster_triangles", CASTERS, lambda s: s.triangles.n_triangles, ())

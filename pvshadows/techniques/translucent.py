@@ -33,8 +33,8 @@ def split_casters(
     casters : list of ActorState
         A light's casters.
     snapshot : Snapshot, optional
-        The snapshot they belong to: its stacked transmittances tell at once
-        that all are opaque (the common case), without a look at each state.
+        The snapshot they belong to: it tells at once, without a look at each
+        state, when all are opaque (the common case).
 
     Returns
     -------
@@ -52,6 +52,8 @@ def split_casters(
     True
     """
     if snapshot is not None:
+        if not snapshot.some_caster_translucent:
+            return casters, []
         if not snapshot.caster_transmittance[snapshot.caster_rows(casters)].any():
             return casters, []
     elif not any(map(_TRANSMITTANCE, casters)):
