@@ -110,7 +110,7 @@ class RendererShadows:
         return self._techniques[name]
 
     def _start_gl(self) -> None:
-        window = self.renderer.GetRenderWindow()
+        window = vtk.vtkRenderer.GetRenderWindow(self.renderer)
         if self._window is window:
             return
         self._window = window
@@ -139,7 +139,8 @@ class RendererShadows:
         self._start_gl()
         assert self._buffers is not None and self._timer is not None  # made by _start_gl
         renderer = self.renderer
-        renderer.UpdateLightsGeometryToFollowCamera()
+        # VTK's own methods, called on the class: PyVista's wrappers check every attribute
+        vtk.vtkRenderer.UpdateLightsGeometryToFollowCamera(renderer)
         snapshot = self._reader.read(renderer)
         last = self._context.view if self._context is not None else None
         view = FrameView.of(renderer, last)
@@ -157,7 +158,7 @@ class RendererShadows:
         context = FrameContext(
             self._window,
             renderer,
-            renderer.GetActiveCamera(),
+            vtk.vtkRenderer.GetActiveCamera(renderer),
             snapshot,
             self._frame,
             self._buffers,

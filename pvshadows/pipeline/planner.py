@@ -278,7 +278,7 @@ def plan_frame(
         One plan per light, in the renderer's order; each that casts holds
         its :class:`pvshadows.model.plan.Cast`.
     """
-    collection = renderer.GetLights()
+    collection = vtk.vtkRenderer.GetLights(renderer)  # past PyVista's attribute checks
     collection.InitTraversal()
     lights = [collection.GetNextItem() for _ in range(collection.GetNumberOfItems())]
     view = FrameView.of(renderer) if view is None else view
@@ -303,7 +303,7 @@ def plan_frame(
                 memo.keep(inputs, plan, use, in_view)
         elif isinstance(plan.cast, VolumeCast):
             choose_volume_zmode(plan.cast, plan.cast.volume, renderer)
-        if light.GetSwitch():
+        if vtk.vtkLight.GetSwitch(light):
             vtk_index += 1
         plans.append(plan)
     reach.keep_only({plan.key for plan in plans})
@@ -367,7 +367,7 @@ def _plan_light(
     if settings.strength == 0.0:
         plan.notes.append("strength=0: its shadows would remove nothing, so none is drawn")
         return plan, None
-    if light.LightTypeIsHeadlight():
+    if vtk.vtkLight.LightTypeIsHeadlight(light):
         plan.notes.append(
             "a headlight's shadows hide behind the objects that cast them: none drawn"
         )

@@ -47,9 +47,10 @@ def light_kind(light: vtk.vtkLight) -> LightKind:
     >>> light_kind(pv.Light(positional=True, cone_angle=30)).value
     'spot'
     """
-    if not light.GetPositional():
+    # VTK's own methods, called on the class: PyVista's wrappers check every attribute
+    if not vtk.vtkLight.GetPositional(light):
         return LightKind.DIRECTIONAL
-    return LightKind.POINT if light.GetConeAngle() >= 90.0 else LightKind.SPOT
+    return LightKind.POINT if vtk.vtkLight.GetConeAngle(light) >= 90.0 else LightKind.SPOT
 
 
 @dataclass(frozen=True)
@@ -128,8 +129,10 @@ def pose_time(light: vtk.vtkLight) -> int:
     >>> pose_time(light) > before
     True
     """
-    matrix = light.GetTransformMatrix()
-    own = light.GetMTime()
+    # VTK's own methods, called on the class: PyVista's wrappers check every
+    # attribute they are asked for, a cost paid each frame.
+    matrix = vtk.vtkLight.GetTransformMatrix(light)
+    own = vtk.vtkLight.GetMTime(light)
     return own if matrix is None else max(own, matrix.GetMTime())
 
 
@@ -166,8 +169,8 @@ def light_pose(light: vtk.vtkLight) -> LightPose:
     [0.0, 0.0, -1.0]
     """
     # plain floats for three-vectors: numpy's per-call cost outweighs its speed here
-    position = light.GetTransformedPosition()
-    focal_point = light.GetTransformedFocalPoint()
+    position = vtk.vtkLight.GetTransformedPosition(light)
+    focal_point = vtk.vtkLight.GetTransformedFocalPoint(light)
     if not all(map(math.isfinite, (*position, *focal_point))):
         msg = (
             f"light position {tuple(light.GetPosition())} and focal_point "
@@ -175,9 +178,10 @@ def light_pose(light: vtk.vtkLight) -> LightPose:
         )
         raise ValueError(msg)
     kind = light_kind(light)
-    if kind is LightKind.SPOT and not light.GetConeAngle() > 0.0:
+    cone_angle = vtk.vtkLight.GetConeAngle(light)
+    if kind is LightKind.SPOT and not cone_angle > 0.0:
         msg = (
-            f"cone_angle={light.GetConeAngle()} is not allowed for a spot light: it must be "
+            f"cone_angle={cone_angle} is not allowed for a spot light: it must be "
             "more than 0 degrees (90 or more makes it a point light)"
         )
         raise ValueError(msg)
@@ -193,7 +197,7 @@ def light_pose(light: vtk.vtkLight) -> LightPose:
             )
             raise ValueError(msg)
     direction = np.array(offset) / length
-    return LightPose(kind, np.array(position, dtype=np.float64), direction, light.GetConeAngle())
+    return LightPose(kind, np.array(position, dtype=np.float64), direction, cone_angle)
 
 
 def casts_light(light: vtk.vtkLight) -> bool:
@@ -217,4 +221,4 @@ def casts_light(light: vtk.vtkLight) -> bool:
     >>> casts_light(pv.Light(intensity=0.0))
     False
     """
-    return bool(light.GetSwitch()) and light.GetIntensity() > 0.0
+    return bool(vtk.vtkLight.GetSwitch(light)) and vtk.vtkLight.GetIntensity(light) > 0.0

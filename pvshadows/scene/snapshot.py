@@ -694,8 +694,9 @@ class SceneReader:
         True
         """
         cache = self._frames.setdefault(vtk_id(renderer), _RendererCache())
-        camera = renderer.GetActiveCamera().GetMTime()
-        props = renderer.GetViewProps().GetMTime()
+        # VTK's own methods, called on the class: PyVista's wrappers check every attribute
+        camera = vtk.vtkCamera.GetMTime(vtk.vtkRenderer.GetActiveCamera(renderer))
+        props = vtk.vtkRenderer.GetViewProps(renderer).GetMTime()
         if cache.props != props:
             collection = renderer.GetActors()
             collection.InitTraversal()

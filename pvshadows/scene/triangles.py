@@ -136,7 +136,12 @@ def vtk_id(obj: vtk.vtkObjectBase) -> str:
     >>> vtk_id(light) == vtk_id(light)
     True
     """
-    return obj.__this__
+    # read past PyVista's wrappers, which check each attribute they are asked for
+    return _ATTRIBUTE(obj, "__this__")
+
+
+#: Python's own attribute lookup, without a subclass's ``__getattribute__``.
+_ATTRIBUTE = object.__getattribute__
 
 
 def actor_matrix(actor: vtk.vtkProp3D) -> np.ndarray:
