@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import replace
-from functools import lru_cache
+from weakref import WeakKeyDictionary
 
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.snapshot import ActorState, Snapshot
@@ -58,11 +58,17 @@ def cube_passes(
     return _with_passes(settings, "six")
 
 
-@lru_cache(maxsize=64)
+#: Each light's settings with ``passes`` resolved, kept while the settings live.
+_RESOLVED: WeakKeyDictionary[ShadowSettings, dict[str, ShadowSettings]] = WeakKeyDictionary()
+
+
 def _with_passes(settings: ShadowSettings, passes: str) -> ShadowSettings:
     """Return ``settings`` with ``passes`` set: the same object for the same choice.
 
     A light that moves is planned again each frame; the same settings object
     spares the copy and lets the next frame's plan compare it by identity.
     """
-    return replace(settings, passes=passes)
+    resolved = _RESOLVED.setdefault(settings, {})
+    if passes not in resolved:
+        resolved[passes] = replace(settings, passes=passes)
+    return resolved[passes]
