@@ -11,7 +11,7 @@ import pytest
 import pyvista as pv
 from pyvista import examples
 
-from pvshadows.scene.fitting import spot_fit
+from pvshadows.scene.fitting import SpotFit, cone_measures, spot_fit
 from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.tools.scenes import standard_scene
 
@@ -104,8 +104,13 @@ def test_thin_legs_of_the_ant_at_the_default_quality(kind):
 
 def test_a_spot_map_holds_only_the_casters_in_front_of_the_light():
     pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0.0, 0.0, -1.0]), 45.0)
+
+    def fitted_to(box: list) -> SpotFit:
+        spread = float(cone_measures(pose, np.array([box])).spread.max())
+        return spot_fit(pose, 1024, 0.1, 100.0, spread)
+
     cone = spot_fit(pose, 1024, 0.1, 100.0)
-    small = spot_fit(pose, 1024, 0.1, 100.0, np.array([[[-1.0, -1.0, -12.0], [1.0, 1.0, -10.0]]]))
-    behind = spot_fit(pose, 1024, 0.1, 100.0, np.array([[[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]]))
+    small = fitted_to([[-1.0, -1.0, -12.0], [1.0, 1.0, -10.0]])
+    behind = fitted_to([[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]])
     assert small.texel == pytest.approx(cone.texel * 0.1, rel=1e-9)  # tan 45 deg -> 1 / 10
     assert behind.texel == cone.texel

@@ -51,11 +51,7 @@ def _up_for(direction: np.ndarray) -> np.ndarray:
 
 
 def spot_fit(
-    pose: LightPose,
-    resolution: int,
-    near: float,
-    far: float,
-    boxes: np.ndarray | None = None,
+    pose: LightPose, resolution: int, near: float, far: float, spread: float | None = None
 ) -> SpotFit:
     """Return the perspective map holding a spot light's cone, or the casters in it.
 
@@ -67,10 +63,11 @@ def spot_fit(
         Texels per side.
     near, far : float
         Clip distances (depth clamp makes them matter only for precision).
-    boxes : numpy.ndarray, optional
-        ``(n, 2, 3)`` world bounds of the casters that can shadow a receiver:
-        when they all lie in front of the light, the map holds only them
-        (its texels are then finer than the cone's), else the whole cone.
+    spread : float, optional
+        The widest :attr:`ConeMeasures.spread` of the casters that can
+        shadow a receiver: when they all lie in front of the light, the map
+        holds only them (its texels are then finer than the cone's); when
+        not (infinite) or not given, the whole cone.
 
     Returns
     -------
@@ -86,35 +83,6 @@ def spot_fit(
     >>> fit = spot_fit(pose, 1000, 0.1, 10.0)
     >>> round(fit.texel, 4)
     0.002
-    """
-    spread = None
-    if boxes is not None and len(boxes):
-        boxes = np.asarray(boxes, dtype=np.float64)
-        spread = float(cone_measures(pose, boxes).spread.max())
-    return spot_fit_within(pose, resolution, near, far, spread)
-
-
-def spot_fit_within(
-    pose: LightPose, resolution: int, near: float, far: float, spread: float | None
-) -> SpotFit:
-    """Return the perspective map holding a spot light's cone, or a narrower spread.
-
-    Parameters
-    ----------
-    pose : LightPose
-        The spot light.
-    resolution : int
-        Texels per side.
-    near, far : float
-        Clip distances.
-    spread : float or None
-        The widest :attr:`ConeMeasures.spread` of the casters that can
-        shadow a receiver (``None`` or infinite: the whole cone).
-
-    Returns
-    -------
-    SpotFit
-        As :func:`spot_fit`.
     """
     rotation = _spot_rotation(pose)
     cone = float(np.tan(np.radians(min(pose.cone_angle, 89.0))))

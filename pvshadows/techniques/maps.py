@@ -28,7 +28,7 @@ from pvshadows.scene.fitting import (
     ConeMeasures,
     SunFit,
     cone_measures,
-    spot_fit_within,
+    spot_fit,
     spot_shadowing_rows,
     sun_actors,
     sun_fit,
@@ -149,7 +149,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             nearest, far = distance_range(measures.near[ranged_rows], measures.far[ranged_rows])
             shadowing = spot_shadowing_rows(pose, inside, snapshot)
             spread = float(measures.spread[shadowing].max()) if len(shadowing) else None
-            fit = spot_fit_within(pose, settings.resolution, far * 1e-4, far, spread)
+            fit = spot_fit(pose, settings.resolution, far * 1e-4, far, spread)
             state.range_key, state.range = range_key, (nearest, far)
             state.range_snapshot = context.snapshot
             state.world_to_light = translation(-pose.position)
