@@ -146,7 +146,11 @@ class PlanMemo:
         return kept[2]
 
     def recall(
-        self, inputs: tuple, in_view: ViewSight, reach: ReachCache | None = None
+        self,
+        inputs: tuple,
+        in_view: ViewSight,
+        reach: ReachCache | None = None,
+        pose_of: Callable[[vtk.vtkLight], LightPose] = light_pose,
     ) -> LightPlan | None:
         """Return a light's last plan if it was made from the same inputs, else ``None``.
 
@@ -159,13 +163,14 @@ class PlanMemo:
         exactly which receivers the camera sees nor choose a receiving
         plane. The plan comes back with the planner's notes only: what
         techniques and the frame added to them last frame is said again
-        this frame.
+        this frame. ``pose_of`` reads a light's pose (the frame's reader
+        reads each light once).
         """
         kept = self._plans.get(id(inputs[0]))
         if kept is None:
             return None
         same = _same_inputs(kept[0], inputs)
-        if not same and (reach is None or not _moved_out_of_reach(kept, inputs, reach)):
+        if not same and (reach is None or not _moved_out_of_reach(kept, inputs, reach, pose_of)):
             return None
         if _view_key(kept[3], in_view) != kept[4]:
             return None
@@ -187,7 +192,12 @@ class PlanMemo:
             del self._plans[key]
 
 
-def _moved_out_of_reach(kept: tuple, inputs: tuple, reach: ReachCache) -> bool:
+def _moved_out_of_reach(
+    kept: tuple,
+    inputs: tuple,
+    reach: ReachCache,
+    pose_of: Callable[[vtk.vtkLight], LightPose],
+) -> bool:
     """Whether only actors out of the light's reach moved since its kept plan was made."""
     (light, time, settings, index, vtk_index, before), plan, use = kept[0], kept[1], kept[3]
     now = inputs[5]
@@ -200,7 +210,7 @@ def _moved_out_of_reach(kept: tuple, inputs: tuple, reach: ReachCache) -> bool:
     ):
         return False
     try:
-        pose = light_pose(light)
+        pose = pose_of(light)
     except ValueError:
         return False
     return not reach.touches(plan.key, pose, now)
@@ -295,7 +305,7 @@ def plan_frame(
     planned = 0
     for index, light in enumerate(lights):
         inputs = (light, pose_time(light), settings_for(light), index, vtk_index, snapshot)
-        plan = memo.recall(inputs, in_view, reach) if memo is not None else None
+        plan = memo.recall(inputs, in_view, reach, shared.pose) if memo is not None else None
         if plan is None:
             plan, use = _plan_light(renderer, shared, inputs, reach, warned, gpu)
             planned += 1
@@ -323,6 +333,14 @@ class _Shared:
     def __init__(self, snapshot: Snapshot, in_view: ViewSight) -> None:
         self.snapshot = snapshot
         self.in_view = in_view
+        self._poses: dict[int, LightPose] = {}
+
+    def pose(self, light: vtk.vtkLight) -> LightPose:
+        """Return the light's pose (:func:`light_pose`), read once this frame."""
+        key = id(light)
+        if key not in self._poses:
+            self._poses[key] = light_pose(light)
+        return self._poses[key]
 
     @cached_property
     def seen(self) -> list[ActorState]:
@@ -373,7 +391,7 @@ def _plan_light(
         )
         return plan, None
     try:
-        pose = light_pose(light)
+        pose = shared.pose(light)
     except ValueError as error:
         plan.notes.append(f"casts nothing: {error}")
         return plan, None
