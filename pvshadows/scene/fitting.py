@@ -221,7 +221,7 @@ def spot_shadowing_rows(
         return rows
     for row in np.flatnonzero(~keep).tolist():
         state = casters[row]
-        away = state.bounds.mean(axis=0) - pose.position
+        away = 0.5 * (state.bounds[0] + state.bounds[1]) - pose.position
         keep[row] = not _flat_and_lit_above(state, away, snapshot)
     return rows[keep]
 
