@@ -107,10 +107,11 @@ def opengl_mapper(actor: vtk.vtkActor) -> vtk.vtkMapper | None:
     >>> opengl_mapper(actor) is None
     True
     """
-    mapper = actor.GetMapper()
-    if mapper is not None and hasattr(mapper, "GetPolyDataMapper"):
-        return mapper.GetPolyDataMapper()
-    return mapper
+    # VTK's own methods, called on the class: PyVista's wrappers check every attribute
+    # (asked each frame of the receivers VTK has not drawn yet)
+    mapper = vtk.vtkActor.GetMapper(actor)
+    inner = getattr(type(mapper), "GetPolyDataMapper", None)
+    return mapper if inner is None else inner(mapper)
 
 
 class LandingCheck:
