@@ -93,6 +93,7 @@ class FrameBlock:
         self._bind, self._send, self._bind_base = glBindBuffer, glBufferData, glBindBufferBase
         self._buffer = int(gl.glGenBuffers(1))
         self._data = np.zeros(0, dtype=np.float32)
+        self._pointer = ctypes.c_void_p(0)
         self._sent = b""
         self.uploads = 0
 
@@ -138,6 +139,7 @@ class FrameBlock:
         data = self._data
         if data.size < size:
             data = self._data = np.zeros(size, dtype=np.float32)
+            self._pointer = ctypes.c_void_p(data.ctypes.data)  # read once: a ctypes view per read
         else:
             data[:] = 0.0
         data[:1].view(np.int32)[0] = probe
@@ -156,8 +158,7 @@ class FrameBlock:
         sent = data.tobytes()  # compared as bytes: a NaN parameter equals itself
         if sent != self._sent:
             self._bind(gl.GL_UNIFORM_BUFFER, self._buffer)
-            pointer = ctypes.c_void_p(data.ctypes.data)
-            self._send(gl.GL_UNIFORM_BUFFER, data.nbytes, pointer, gl.GL_DYNAMIC_DRAW)
+            self._send(gl.GL_UNIFORM_BUFFER, data.nbytes, self._pointer, gl.GL_DYNAMIC_DRAW)
             self._bind(gl.GL_UNIFORM_BUFFER, 0)
             self._sent = sent
             self.uploads += 1
