@@ -37,7 +37,7 @@ from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.reach import ReachCache
 from pvshadows.pipeline.sight import ViewSight
 from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
-from pvshadows.scene.culling import box_corners
+from pvshadows.scene.culling import box_around, box_corners
 from pvshadows.scene.light_kit import unshadowed_reason
 from pvshadows.scene.lights import (
     LightKind,
@@ -414,7 +414,7 @@ def _plan_light(
         plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
         return plan, use
     plan.notes.append(why)
-    box = snapshot.casters_box if within is casters else _box_around(snapshot.caster_bounds[hits])
+    box = snapshot.casters_box if within is casters else box_around(snapshot.caster_bounds[hits])
     if technique == "cubemap" and pose.kind is LightKind.POINT:
         technique, pose = _fit_far_point(pose, box, plan.notes)
     elif technique == "map" and pose.kind is LightKind.SPOT:
@@ -447,11 +447,6 @@ def _planar_cast(cast: Cast, plane: PlaneChoice) -> PlanarCast:
 
 def _fields_of(cast: Cast) -> dict[str, Any]:
     return {f.name: getattr(cast, f.name) for f in fields(Cast)}
-
-
-def _box_around(bounds: np.ndarray) -> np.ndarray:
-    """Return the ``(2, 3)`` box around ``(n, 2, 3)`` bounds."""
-    return np.array([bounds[:, 0].min(axis=0), bounds[:, 1].max(axis=0)])
 
 
 def _casters_seen_from(pose: LightPose, box: np.ndarray) -> tuple[float, float, np.ndarray]:

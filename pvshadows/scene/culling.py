@@ -166,6 +166,32 @@ def box_in_spot(box: np.ndarray, pose: LightPose) -> bool:
     return _one_box_in_spot(lo, hi, pose)
 
 
+def box_around(boxes: np.ndarray) -> np.ndarray:
+    """Return the box around boxes.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` min/max corners.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(2, 3)``: the least of the min corners and the greatest of the max
+        corners (NaN when there is no box).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.culling import box_around
+    >>> box_around(np.array([[[0, 0, 0], [1, 1, 1]], [[2, -1, 0], [3, 0, 4]]])).tolist()
+    [[0, -1, 0], [3, 1, 4]]
+    """
+    if not len(boxes):
+        return np.full((2, 3), np.nan)
+    return np.array([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])
+
+
 #: Which of the min (0) or max (1) corner each coordinate of a box's eight corners takes.
 _CORNERS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=bool)
 

@@ -24,7 +24,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
-from pvshadows.scene.culling import box_corners
+from pvshadows.scene.culling import box_around, box_corners
 from pvshadows.scene.translucency import transmittance
 from pvshadows.scene.triangles import (
     ActorTriangles,
@@ -410,18 +410,12 @@ class Snapshot:
     @cached_property
     def receivers_box(self) -> np.ndarray:
         """World bounds of all :attr:`receivers` together, ``(2, 3)`` (NaN when there are none)."""
-        bounds = self.receiver_bounds
-        if not len(bounds):
-            return np.full((2, 3), np.nan)
-        return np.array([bounds[:, 0].min(axis=0), bounds[:, 1].max(axis=0)])
+        return box_around(self.receiver_bounds)
 
     @cached_property
     def casters_box(self) -> np.ndarray:
         """World bounds of all :attr:`casters` together, ``(2, 3)`` (NaN when there are none)."""
-        bounds = self.caster_bounds
-        if not len(bounds):
-            return np.full((2, 3), np.nan)
-        return np.array([bounds[:, 0].min(axis=0), bounds[:, 1].max(axis=0)])
+        return box_around(self.caster_bounds)
 
     @cached_property
     def caster_models(self) -> np.ndarray:
