@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from enum import StrEnum
+from functools import cached_property
 
 import numpy as np
 
@@ -76,7 +77,11 @@ class LightPose:
     cone_angle: float
 
     def key(self) -> tuple:
-        """Return a hashable value that changes whenever the pose changes."""
+        """Return a hashable value that changes whenever the pose changes (built once)."""
+        return self._key
+
+    @cached_property
+    def _key(self) -> tuple:
         return (self.kind, *self.position.tolist(), *self.direction.tolist(), self.cone_angle)
 
     def homogeneous(self) -> np.ndarray:
