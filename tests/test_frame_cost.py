@@ -270,11 +270,21 @@ def test_a_sun_reads_its_actors_once_while_only_the_camera_moves():
     read = state.sun_actors[2]
     assert read is not None and len(read.receivers) == 4
     assert len(read.casters) == 3  # the ground, flat and under the others, shadows nothing
+    whole = state.fitted
     for _ in range(3):
         pl.camera.Azimuth(10)
         draw(pl)
         assert state.sun_actors[2] is read
+        # The view holds every receiver across the light: the scene's fit, not fitted again.
+        assert state.fitted is whole
     assert pl.shadows.measure(scene.light).misclassified <= 0.01
+    pl.camera.Zoom(8.0)  # the view holds part of the ground: a finer fit to that part
+    draw(pl)
+    assert state.fitted.half_width < whole.half_width
+    assert pl.shadows.measure(scene.light).misclassified <= 0.01
+    pl.camera.Zoom(1 / 8.0)
+    draw(pl)
+    assert state.fitted is whole
     scene.light.position = (4.0, 2.0, 8.0)
     draw(pl)
     assert state.sun_actors[2] is not read

@@ -285,6 +285,8 @@ class SunFit:
         bool
             Whether to keep this map.
         """
+        if needed is self:
+            return True
         if self.resolution != needed.resolution or (
             self.rotation is not needed.rotation
             and not np.array_equal(self.rotation, needed.rotation)
@@ -408,6 +410,17 @@ class SunActors:
         )
 
     @cached_property
+    def receivers_across(self) -> tuple[float, float, float, float]:
+        """The box holding every receiver across the light: low x, low y, high x, high y."""
+        low, high = self.receivers[:, 0, :2].min(axis=0), self.receivers[:, 1, :2].max(axis=0)
+        return (*low.tolist(), *high.tolist())
+
+    @cached_property
+    def fits_of_whole_scene(self) -> dict[int, SunFit | None]:
+        """Fits by resolution for a view that holds every receiver (the camera does not matter)."""
+        return {}
+
+    @cached_property
     def caster_extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The casters' lowest and highest corners across the light, their near and far ends."""
         boxes = self.casters
@@ -477,17 +490,39 @@ def sun_fit(actors: SunActors, clip_to_world: np.ndarray, resolution: int) -> Su
     SunFit or None
         ``None`` when no caster can shadow a visible receiver.
     """
-    rotation = actors.rotation
     # The view's corners in light axes: the rotation keeps the homogeneous weight.
-    view = _CLIP_CORNERS @ (rotation @ clip_to_world).T
-    view = view[:, :2] / view[:, 3:4]
-    receiver_lo, receiver_hi, receiver_far = actors.receiver_extents
-    lo = np.maximum(receiver_lo, view.min(axis=0))
-    hi = np.minimum(receiver_hi, view.max(axis=0))
+    # Eight corners: plain floats cost less than numpy's calls.
+    corners = (_CLIP_CORNERS @ (actors.rotation @ clip_to_world).T).tolist()
+    xs, ys = [x / w for x, _, _, w in corners], [y / w for _, y, _, w in corners]
+    view_x_lo, view_y_lo, view_x_hi, view_y_hi = min(xs), min(ys), max(xs), max(ys)
+    x_lo, y_lo, x_hi, y_hi = actors.receivers_across
+    if view_x_lo <= x_lo and view_y_lo <= y_lo and view_x_hi >= x_hi and view_y_hi >= y_hi:
+        # Every receiver is in the region: the fit is the scene's, whatever the camera.
+        fits = actors.fits_of_whole_scene
+        if resolution not in fits:
+            receivers = np.ones(len(actors.receivers), dtype=bool)
+            region = np.array([x_lo, y_lo]), np.array([x_hi, y_hi])
+            fits[resolution] = _fit_over(actors, *region, receivers, resolution)
+        return fits[resolution]
+    receiver_lo, receiver_hi, _ = actors.receiver_extents
+    lo = np.maximum(receiver_lo, np.array([view_x_lo, view_y_lo]))
+    hi = np.minimum(receiver_hi, np.array([view_x_hi, view_y_hi]))
     visible = (lo <= hi).all(axis=1)
     if not visible.any():
         return None
-    region_lo, region_hi = lo[visible].min(axis=0), hi[visible].max(axis=0)
+    return _fit_over(actors, lo[visible].min(axis=0), hi[visible].max(axis=0), visible, resolution)
+
+
+def _fit_over(
+    actors: SunActors,
+    region_lo: np.ndarray,
+    region_hi: np.ndarray,
+    visible: np.ndarray,
+    resolution: int,
+) -> SunFit | None:
+    """Fit the map to the casters over a region across the light that visible receivers span."""
+    rotation = actors.rotation
+    receiver_far = actors.receiver_extents[2]
     caster_lo, caster_hi, caster_near, caster_far = actors.caster_extents
     over = (caster_hi >= region_lo).all(axis=1) & (caster_lo <= region_hi).all(axis=1)
     if not over.any():
