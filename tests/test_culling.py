@@ -85,7 +85,8 @@ def _faces_by_plane(box: np.ndarray) -> int:
 
 @pytest.mark.parametrize("scale", [1e-6, 1.0, 1e9])
 def test_cube_faces_touching_boxes_match_a_test_plane_by_plane(scale):
-    from pvshadows.geometry.transforms import faces_touching_boxes
+    from pvshadows.geometry.transforms import boxes_from_origin, faces_touching_boxes
+    from pvshadows.scene.fitting import box_distances_squared
 
     rng = np.random.default_rng(7)
     boxes = rng.normal(size=(400, 2, 3)) * scale
@@ -94,5 +95,10 @@ def test_cube_faces_touching_boxes_match_a_test_plane_by_plane(scale):
     boxes = np.sort(boxes, axis=1)
     expected = [_faces_by_plane(box) for box in boxes]
     assert faces_touching_boxes(boxes).tolist() == expected
+    # the same pass measures the distances, bit for bit as the spot light's measure does
+    near, far, _ = boxes_from_origin(boxes)
+    near_alone, far_alone = box_distances_squared(np.zeros(3), boxes)
+    assert np.array_equal(near, near_alone) and np.array_equal(far, far_alone)
+    assert near[[i for i, mask in enumerate(expected) if mask == 63]].max() == 0.0
     # boxes seen by one face only, and boxes around the light, seen by all six
     assert {1, 63} <= set(expected)

@@ -145,6 +145,51 @@ def cube_face_projections(near: float, far: float) -> np.ndarray:
     return perspective(90.0, 1.0, near, far) @ _FACE_ROTATIONS
 
 
+def boxes_from_origin(boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Measure boxes from the origin (a light): distances, and the cube faces each may touch.
+
+    One pass over the boxes serves a point light's range and its cube's faces.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` min/max corners relative to the origin.
+
+    Returns
+    -------
+    near, far : numpy.ndarray
+        ``(n,)`` each: squared distance to the box (0 inside it) and to its
+        farthest corner.
+    faces : numpy.ndarray
+        ``(n,)`` int masks: bit ``f`` is set when face ``f``'s 90-degree
+        pyramid (GL order +X, -X, +Y, -Y, +Z, -Z) and the box may overlap
+        (conservative: never misses an overlap; all six for a box holding
+        the origin).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.geometry.transforms import boxes_from_origin
+    >>> near, far, faces = boxes_from_origin(np.array([[[2.0, -0.5, -0.5], [3.0, 0.5, 0.5]]]))
+    >>> near.tolist(), far.tolist(), faces.tolist()  # only +X sees it
+    ([4.0], [9.5], [1])
+    """
+    boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
+    # How far each box reaches from the origin along -x, -y, -z (``-low``), +x, +y, +z (``high``).
+    reach = (boxes * _REACH_SIGNS).reshape(-1, 6)
+    # Along each axis, the reach of the box's nearer side: negative outside the box's slab.
+    nearer = np.minimum(reach[:, :3], reach[:, 3:])
+    outside = np.minimum(nearer, 0.0)
+    farther = np.abs(reach).reshape(-1, 2, 3).max(axis=1)
+    near, far = np.einsum("ij,ij->i", outside, outside), np.einsum("ij,ij->i", farther, farther)
+    # A face's four side planes each weigh its axis and one other: a box is inside them
+    # when it reaches ahead along the face's axis at least as far as it lies outside the
+    # slab of either other axis.
+    beside = np.maximum(-nearer[:, _OTHER_AXES].min(axis=2), 0.0)
+    inside = reach[:, _FACE_REACH] >= beside[:, _FACE_AXIS]
+    return near, far, inside.astype(np.int64) @ _FACE_BITS
+
+
 def faces_touching_boxes(boxes: np.ndarray) -> np.ndarray:
     """Return bit masks of the cube faces whose frustum may hold each box.
 
@@ -156,35 +201,28 @@ def faces_touching_boxes(boxes: np.ndarray) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        ``(n,)`` int masks: bit ``f`` is set when face ``f``'s 90-degree
-        pyramid and the box may overlap (conservative: never misses an overlap).
+        ``(n,)`` int masks, as :func:`boxes_from_origin` gives them.
 
     Examples
     --------
     >>> import numpy as np
     >>> from pvshadows.geometry.transforms import faces_touching_boxes
-    >>> faces_touching_boxes(np.array([[[2.0, -0.5, -0.5], [3.0, 0.5, 0.5]]]))  # only +X
-    array([1])
+    >>> boxes = np.array([[[-1.0, -1, -1], [1, 1, 1]], [[2, -0.5, -0.5], [3, 0.5, 0.5]]])
+    >>> faces_touching_boxes(boxes)  # around the light: all six; ahead along +X: one
+    array([63,  1])
     """
-    boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
-    low, high = boxes[:, 0], boxes[:, 1]
-    # A face's planes each weigh two axes, so a box's farthest reach along one is the
-    # sum of its reaches along the two: along +axis ``high``, along -axis ``-low``.
-    reach = np.stack([high, -low], axis=1)  # (n, sign, axis)
-    ahead = reach[:, _FACE_SIGN, _FACE_AXIS]  # (n, face): past the face's plane through the light
-    # inside its four side planes: the nearer of the two reaches along each other axis
-    across = np.minimum(high, -low)[:, _FACE_OTHERS]  # (n, face, 2)
-    inside = (ahead >= 0.0) & (ahead[:, :, None] + across >= 0.0).all(axis=2)
-    return inside.astype(np.int64) @ _FACE_BITS
+    return boxes_from_origin(boxes)[2]
 
 
-#: Each face's rotation, the axis it looks along, its sign (0: +, 1: -), the two other
-#: axes (its side planes' second axes) and its bit.
+#: Each face's rotation; the axis it looks along; the column of its direction in a box's
+#: reaches (-x, -y, -z, +x, +y, +z); the two other axes of each axis; each face's bit.
 _FACE_ROTATIONS = np.stack([cube_face_rotation(face) for face in range(6)])
 _FACE_AXIS = np.array([int(np.argmax(np.abs(forward))) for forward, _ in CUBE_FACE_AXES])
-_FACE_SIGN = np.array([int(sum(forward) < 0.0) for forward, _ in CUBE_FACE_AXES])
-_FACE_OTHERS = np.array([[o for o in range(3) if o != axis] for axis in _FACE_AXIS])
+_FACE_REACH = _FACE_AXIS + 3 * np.array([int(sum(forward) > 0.0) for forward, _ in CUBE_FACE_AXES])
+_OTHER_AXES = np.array([[o for o in range(3) if o != axis] for axis in range(3)])
 _FACE_BITS = 1 << np.arange(6)
+#: Signs turning a box's ``(low, high)`` corners into its reaches ``(-low, high)``.
+_REACH_SIGNS = np.array([[-1.0], [1.0]])
 
 
 def translation(offset: np.ndarray) -> np.ndarray:

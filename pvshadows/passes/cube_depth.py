@@ -7,11 +7,7 @@ from collections.abc import Callable
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.geometry.transforms import (
-    column_major,
-    cube_face_projections,
-    faces_touching_boxes,
-)
+from pvshadows.geometry.transforms import column_major, cube_face_projections
 from pvshadows.gl.caster_draws import CasterDraws, draw_casters
 from pvshadows.gl.cube_array import CubeSlot
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
@@ -19,31 +15,6 @@ from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.report import PassReport
 from pvshadows.passes.gl_state import FaceCulling, depth_only_state
-
-
-def caster_face_masks(boxes_from_light: np.ndarray) -> np.ndarray:
-    """Return which cube faces each caster's light-relative bounds may touch.
-
-    Parameters
-    ----------
-    boxes_from_light : numpy.ndarray
-        ``(n, 2, 3)`` bounds relative to the light.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``(n,)`` face bit masks (all six for a box holding the light).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from pvshadows.passes.cube_depth import caster_face_masks
-    >>> caster_face_masks(np.array([[[-1.0, -1, -1], [1, 1, 1]], [[2, -0.5, -0.5], [3, 0.5, 0.5]]]))
-    array([63,  1])
-    """
-    boxes = np.asarray(boxes_from_light, dtype=np.float64).reshape(-1, 2, 3)
-    holds_light = np.all(boxes[:, 0] <= 0.0, axis=1) & np.all(boxes[:, 1] >= 0.0, axis=1)
-    return np.where(holds_light, 0b111111, faces_touching_boxes(boxes))
 
 
 class CubeDepthPass:
@@ -88,7 +59,8 @@ class CubeDepthPass:
         casters : CasterDraws
             What to draw.
         face_masks : numpy.ndarray
-            ``(n,)`` the faces each caster may touch (:func:`caster_face_masks`).
+            ``(n,)`` the faces each caster may touch
+            (:func:`~pvshadows.geometry.transforms.boxes_from_origin`).
         far : float
             Distance that maps to depth 1.
         passes : {"single", "six"}

@@ -266,9 +266,11 @@ class ReceiverEdits:
         self.received += 1
         pbr = actor.GetProperty().GetInterpolation() == vtk.VTK_PBR
         signature = (triangles, *_signature(pbr, lights))
+        packed = None
         if signature not in fresh:
             self._lights_of[signature] = lights
-            fresh[signature] = self._values(lights, uniforms)
+            packed = receiver_uniforms(lights, uniforms)
+            fresh[signature] = self._values(packed)
         values = fresh[signature]
         same_edits = (
             self._states.get(key) is state
@@ -277,7 +279,9 @@ class ReceiverEdits:
         )
         edits = self._edits_of(actor, key)
         if not same_edits:
-            edits.apply(self._replacements_for(actor, signature, lights, uniforms))
+            if packed is None:
+                packed = receiver_uniforms(lights, uniforms)
+            edits.apply(self._replacements_for(actor, signature, lights, packed))
             if not edits.check.attach():
                 self._unwatched.add(key)
             self.edited += 1
@@ -312,7 +316,7 @@ class ReceiverEdits:
         ``values`` are the signature's values this frame when already converted.
         """
         if values is None:
-            values = self._values(self._lights_of[signature], uniforms)
+            values = self._values(receiver_uniforms(self._lights_of[signature], uniforms))
         previous = self._sent[signature]
         if previous.keys() == values.keys():
             changed = [n for n, v in values.items() if not _same(previous[n], v)]
@@ -325,9 +329,8 @@ class ReceiverEdits:
         self.uniform_calls += len(targets) * len(setters)
         return values
 
-    def _values(self, lights: list[LightShading], uniforms: dict[str, object]) -> dict:
-        """Return the uniforms VTK sets on a receiver that shows ``lights``."""
-        packed = receiver_uniforms(lights, uniforms)
+    def _values(self, packed: dict[str, object]) -> dict:
+        """Return the uniforms VTK sets on a receiver, from its :func:`receiver_uniforms`."""
         if self.units is None:
             return packed
         if self.units.binding:  # the samplers' units are in the source
@@ -340,12 +343,15 @@ class ReceiverEdits:
         actor: vtk.vtkActor,
         signature: tuple,
         lights: list[LightShading],
-        uniforms: dict[str, object],
+        packed: dict[str, object],
     ) -> list[tuple[str, str]]:
-        """Return the edits of a receiver of ``signature``, once per signature and units."""
+        """Return the edits of a receiver of ``signature``, once per signature and units.
+
+        ``packed`` is its :func:`receiver_uniforms`.
+        """
         units = None
         if self.units is not None and self.units.binding:
-            units = self.units.first_units(receiver_uniforms(lights, uniforms))
+            units = self.units.first_units(packed)
         key = (signature, tuple(sorted(units.items())) if units is not None else None)
         if key not in self._replacements:
             self._replacements[key] = receiver_replacements(

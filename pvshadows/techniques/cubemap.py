@@ -21,16 +21,15 @@ from typing import NamedTuple
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.geometry.transforms import translation
+from pvshadows.geometry.transforms import boxes_from_origin, faces_touching_boxes, translation
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.cube_array import CubeArray, CubeSlot, cube_arrays_supported
 from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.transmittance_textures import TransmittanceCube, TransmittanceTexture
 from pvshadows.model.plan import Cast
 from pvshadows.model.report import PassReport
-from pvshadows.passes.cube_depth import CubeDepthPass, caster_face_masks
+from pvshadows.passes.cube_depth import CubeDepthPass
 from pvshadows.passes.transmittance import TranslucentCaster
-from pvshadows.scene.fitting import box_distances_squared
 from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.measures import CasterMeasureCache
 from pvshadows.scene.triangles import vtk_id
@@ -83,7 +82,8 @@ def distance_range(near: np.ndarray, far: np.ndarray) -> tuple[float, float]:
     near, far : numpy.ndarray
         ``(n,)`` squared distances from the light to each caster's bounds and
         to their farthest corner
-        (:func:`pvshadows.scene.fitting.box_distances_squared`).
+        (:func:`pvshadows.geometry.transforms.boxes_from_origin`,
+        :func:`pvshadows.scene.fitting.box_distances_squared`).
 
     Returns
     -------
@@ -94,10 +94,10 @@ def distance_range(near: np.ndarray, far: np.ndarray) -> tuple[float, float]:
     Examples
     --------
     >>> import numpy as np
-    >>> from pvshadows.scene.fitting import box_distances_squared
+    >>> from pvshadows.geometry.transforms import boxes_from_origin
     >>> from pvshadows.techniques.cubemap import distance_range
-    >>> squares = box_distances_squared(np.zeros(3), np.array([[[1.0, -1, -1], [2, 1, 1]]]))
-    >>> near, far = distance_range(*squares)
+    >>> near, far, _ = boxes_from_origin(np.array([[[1.0, -1, -1], [2, 1, 1]]]))
+    >>> near, far = distance_range(near, far)
     >>> near, round(far, 3)
     (1.0, 2.474)
     """
@@ -118,7 +118,7 @@ class CubeMeasures(NamedTuple):
         and to their farthest corner.
     faces : numpy.ndarray
         ``(n,)`` bit masks of the cube faces each caster may touch
-        (:func:`pvshadows.passes.cube_depth.caster_face_masks`).
+        (:func:`pvshadows.geometry.transforms.boxes_from_origin`).
     """
 
     near: np.ndarray
@@ -150,8 +150,7 @@ def cube_measures(pose: LightPose, boxes: np.ndarray) -> CubeMeasures:
     >>> cube_measures(pose, np.array([[[2.0, -0.5, -0.5], [3, 0.5, 0.5]]])).faces.tolist()
     [1]
     """
-    near, far = box_distances_squared(pose.position, boxes)
-    return CubeMeasures(near, far, caster_face_masks(boxes - pose.position))
+    return CubeMeasures(*boxes_from_origin(boxes - pose.position))
 
 
 class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
@@ -272,7 +271,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
 
         def draw(target: TransmittanceTexture) -> list[PassReport]:
             assert isinstance(target, TransmittanceCube)
-            masks = caster_face_masks(context.snapshot.bounds_of(translucent) - position)
+            masks = faces_touching_boxes(context.snapshot.bounds_of(translucent) - position)
             drawn = [
                 TranslucentCaster(
                     context.buffers.get(caster),
