@@ -503,3 +503,28 @@ def test_a_point_light_measures_only_the_moved_actor_for_its_cube():
     scene.light.position = (0.5, -0.25, 6.0)
     draw(pl)
     assert state.measures.measured == 2 * casters + 1
+
+
+@pytest.mark.parametrize("light", ["point", "spot"])
+def test_a_redrawn_map_reuses_its_framebuffer_as_attached(light, monkeypatch):
+    """The map's framebuffer is attached and checked once; each redraw only binds and clears."""
+    import pvshadows.gl.cube_array
+    import pvshadows.gl.textures
+
+    scene = standard_scene(window_size=(320, 240), light=light)
+    pl = scene.plotter
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    checks = []
+    for module in (pvshadows.gl.cube_array, pvshadows.gl.textures):
+        checked = module.finish_binding
+        monkeypatch.setattr(
+            module, "finish_binding", lambda *a, checked=checked: (checks.append(a), checked(*a))
+        )
+    x, y, z = scene.light.position
+    for step in range(1, 4):
+        scene.light.position = (x + 0.1 * step, y, z)
+        draw(pl)
+        assert pl.shadows.last_frame.passes_run == 1
+        assert pl.shadows.measure(scene.light).misclassified <= 0.01
+    assert checks == []

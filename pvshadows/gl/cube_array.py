@@ -80,6 +80,8 @@ class CubeArray:
         self.texture: vtk.vtkTextureObject | None = None
         self._handle = 0
         self._framebuffer = 0
+        #: The array attached whole to the framebuffer and checked complete (0: none).
+        self._attached = 0
         #: Slots held by lights.
         self.taken: set[int] = set()
         self._retired: list[tuple[vtk.vtkTextureObject, int]] = []
@@ -172,6 +174,7 @@ class CubeArray:
         if not self._framebuffer:
             self._framebuffer = int(gl.glGenFramebuffers(1))
         self.texture, self._handle, self.capacity = texture, handle, capacity
+        self._attached = 0  # a name GL hands out again may be a new texture
         self.allocations += 1
 
     def bind_cleared(self, slot: int, face: int | None = None) -> None:
@@ -192,6 +195,11 @@ class CubeArray:
         size = (self.resolution, self.resolution)
         # an array holding this slot only is cleared whole through the layered attachment
         alone = face is None and self.capacity == 1
+        if alone and self._attached == self._handle:  # attached and checked last time
+            self._window.GetState().vtkglViewport(0, 0, *size)
+            gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
+            return
+        self._attached = 0
         faces = () if alone else range(6) if face is None else (face,)
         for order, each in enumerate(faces):
             gl.glFramebufferTextureLayer(
@@ -203,6 +211,7 @@ class CubeArray:
         if face is None:
             gl.glFramebufferTexture(gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self._handle, 0)
             finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
+            self._attached = self._handle
             if alone:
                 gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
 
@@ -249,7 +258,7 @@ class CubeArray:
         if self.texture is not None:
             self.texture.ReleaseGraphicsResources(self._window)
             self._gl.glDeleteTextures(1, [self._handle])
-        self.texture, self._handle, self.capacity = None, 0, 0
+        self.texture, self._handle, self.capacity, self._attached = None, 0, 0, 0
         self.taken.clear()
 
 

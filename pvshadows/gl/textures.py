@@ -46,6 +46,9 @@ class DepthTexture:
         self.texture.SetDepthTextureCompareFunction(vtk.vtkTextureObject.Lequal)
         self.set_linear(False)
         self._framebuffer = int(self._gl.glGenFramebuffers(1))
+        #: What the framebuffer holds attached and checked complete: ``(face,)`` (``None``
+        #: for all faces), or nothing yet. It stays so until another face is asked for.
+        self._attached: tuple[int | None, ...] = ()
 
     @property
     def target(self) -> int:
@@ -97,9 +100,13 @@ class DepthTexture:
         gl = self._gl
         state = self._window.GetState()
         state.vtkglBindFramebuffer(gl.GL_FRAMEBUFFER, self._framebuffer)
-        self._attach(face)
-        size = (self.resolution, self.resolution)
-        finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
+        if self._attached != (face,):
+            self._attached = ()
+            self._attach(face)
+            finish_binding(gl, self._window, gl.GL_NONE, (self.resolution,) * 2, "shadow-map")
+            self._attached = (face,)
+        else:
+            state.vtkglViewport(0, 0, self.resolution, self.resolution)
 
     def bind_cleared(self, face: int | None = None) -> None:
         """Bind the framebuffer as :meth:`bind_as_target` does and clear the attached depth.

@@ -241,6 +241,22 @@ def _cone_planes(direction: tuple[float, float, float], cone_angle: float) -> np
 
 
 @lru_cache(maxsize=256)
+def _cone_plane_sides(
+    direction: tuple[float, float, float], cone_angle: float
+) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """Return what :func:`boxes_in_spot` reads of a cone, once per direction and angle.
+
+    The planes' normals as columns, split into their positive and negative
+    parts (which meet a box's max and min corner), and the cosine and sine
+    of the cone's angle.
+    """
+    normals = _cone_planes(direction, cone_angle).T
+    positive, negative = np.maximum(normals, 0.0), np.minimum(normals, 0.0)
+    angle = np.radians(min(cone_angle, 89.9))
+    return positive, negative, float(np.cos(angle)), float(np.sin(angle))
+
+
+@lru_cache(maxsize=256)
 def _cone_plane_rows(
     direction: tuple[float, float, float], cone_angle: float
 ) -> tuple[tuple[float, ...], ...]:
@@ -305,18 +321,21 @@ def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:
     if len(boxes) == 1:
         lo_, hi_ = boxes[0].tolist()
         return np.array([_one_box_in_spot(lo_, hi_, pose)])
+    direction = pose.direction
     lo, hi = boxes[:, 0] - pose.position, boxes[:, 1] - pose.position
-    holds_light = np.all(lo <= 0.0, axis=1) & np.all(hi >= 0.0, axis=1)
+    holds_light = np.minimum(-lo, hi).min(axis=1) >= 0.0
     # A box is behind a plane through the light when its corner farthest along the
     # plane's normal is: the normal's positive parts meet ``hi``, its negative ones ``lo``.
-    normals = _cone_planes(tuple(pose.direction.tolist()), float(pose.cone_angle)).T
-    farthest = hi @ np.maximum(normals, 0.0) + lo @ np.minimum(normals, 0.0)
-    behind_a_plane = np.any(farthest < 0.0, axis=1)
+    positive, negative, cos, sin = _cone_plane_sides(
+        tuple(direction.tolist()), float(pose.cone_angle)
+    )
+    behind_a_plane = (hi @ positive + lo @ negative).min(axis=1) < 0.0
     center = 0.5 * (lo + hi)
-    radius = 0.5 * np.linalg.norm(hi - lo, axis=1)
-    along = center @ pose.direction
-    across = np.linalg.norm(center - along[:, None] * pose.direction, axis=1)
-    angle = np.radians(min(pose.cone_angle, 89.9))
+    size = hi - lo
+    radius = 0.5 * np.sqrt((size * size).sum(axis=1))  # numpy's norm, without its checks
+    along = center @ direction
+    aside = center - along[:, None] * direction
+    across = np.sqrt((aside * aside).sum(axis=1))
     # Distance from the centre of the sphere around the box to the cone's surface.
-    outside = across * np.cos(angle) - along * np.sin(angle)
+    outside = across * cos - along * sin
     return holds_light | (~behind_a_plane & (outside <= radius))
