@@ -65,19 +65,20 @@ class CasterDraws:
             None if self.rows is None else self.rows[chosen],
         )
 
-    def batched(self) -> np.ndarray:
+    def batched(self) -> np.ndarray | None:
         """Return which casters a pass draws through :attr:`batch`.
 
         Returns
         -------
-        numpy.ndarray
+        numpy.ndarray or None
             ``(n,)`` bool: the batch's casters, when the pass draws at least
-            :data:`~pvshadows.gl.caster_batch.MIN_CASTERS` of them; else none.
+            :data:`~pvshadows.gl.caster_batch.MIN_CASTERS` of them; ``None``
+            when it draws none through the batch.
         """
         if self.batch is None or self.rows is None:
-            return np.zeros(len(self), dtype=bool)
+            return None
         inside = self.rows >= 0
-        return inside if worth_batching(int(inside.sum())) else np.zeros(len(self), dtype=bool)
+        return inside if worth_batching(int(inside.sum())) else None
 
 
 def draw_casters(
@@ -101,13 +102,15 @@ def draw_casters(
     if not len(casters):
         return
     batched = casters.batched()
-    every, some = bool(batched.all()), bool(batched.any())
+    if batched is None:
+        draw_one_by_one(programs(False), casters, cull)
+        return
+    every = bool(batched.all())
     if not every:
-        draw_one_by_one(programs(False), casters.subset(~batched) if some else casters, cull)
-    if some:
-        part = casters if every else casters.subset(batched)
-        assert part.batch is not None and part.rows is not None  # batched() said so
-        part.batch.draw(programs(True), part.rows, part.model_to_light, part.culls, cull)
+        draw_one_by_one(programs(False), casters.subset(~batched), cull)
+    part = casters if every else casters.subset(batched)
+    assert part.batch is not None and part.rows is not None  # batched() said so
+    part.batch.draw(programs(True), part.rows, part.model_to_light, part.culls, cull)
 
 
 def draw_one_by_one(

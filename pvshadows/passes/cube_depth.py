@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import cache
 
 import numpy as np
 
@@ -137,6 +138,7 @@ class CubeDepthPass:
 _FACE_NAMES = ("+X", "-X", "+Y", "-Y", "+Z", "-Z")
 
 
+@cache
 def _faces_text(face_mask: int) -> str:
     drawn = [name for face, name in enumerate(_FACE_NAMES) if face_mask & (1 << face)]
     skipped = [name for face, name in enumerate(_FACE_NAMES) if not face_mask & (1 << face)]
