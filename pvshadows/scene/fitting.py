@@ -473,7 +473,9 @@ def sun_fit(actors: SunActors, clip_to_world: np.ndarray, resolution: int) -> Su
     a flat caster with every other receiver on its lit side). The region's
     size is rounded up to one of ``SIZE_STEPS_PER_OCTAVE`` sizes per octave
     and its centre snapped to the map's texels, so shadow edges stay put
-    while only the camera moves.
+    while only the camera moves. A view that holds every receiver across the
+    light gets the scene's fit, worked out once and kept on ``actors``: the
+    same object however such a camera moves.
 
     Parameters
     ----------
