@@ -264,7 +264,8 @@ class SunFit:
         return (self.rotation.tobytes(), self.origin.tobytes(), self.half_width, self.depth)
 
     @cached_property
-    def _near_center(self) -> np.ndarray:
+    def near_center(self) -> np.ndarray:
+        """The centre of the map's near plane, in light axes."""
         return self.rotation[:3, :3] @ self.origin
 
     def covers(self, needed: SunFit) -> bool:
@@ -292,34 +293,11 @@ class SunFit:
             and not np.array_equal(self.rotation, needed.rotation)
         ):
             return False
-        (x, y, z), (x_needed, y_needed, z_needed) = self._near_center, needed._near_center
+        (x, y, z), (x_needed, y_needed, z_needed) = self.near_center, needed.near_center
         slack = self.half_width - needed.half_width
         across = abs(x_needed - x) <= slack and abs(y_needed - y) <= slack
         along = z <= z_needed and z_needed + needed.depth <= z + self.depth
         return bool(across and along and self.half_width <= 2.0 * needed.half_width)
-
-    def casters_in(self, snapshot: Snapshot) -> list[ActorState]:
-        """Return the casters whose bounds overlap this map's coverage across the light.
-
-        Parameters
-        ----------
-        snapshot : Snapshot
-            The renderer's actors.
-
-        Returns
-        -------
-        list of ActorState
-            The casters to draw into the map.
-        """
-        casters = snapshot.casters
-        if not casters:
-            return []
-        boxes = _light_boxes(self.rotation, snapshot.caster_bounds)
-        center = self._near_center[:2]
-        inside = np.all(boxes[:, 1, :2] >= center - self.half_width, axis=1) & np.all(
-            boxes[:, 0, :2] <= center + self.half_width, axis=1
-        )
-        return [caster for caster, keep in zip(casters, inside, strict=True) if keep]
 
 
 def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
@@ -394,11 +372,35 @@ class SunActors:
         ``(m, 2, 3)`` in light axes, the boxes of the casters that can shadow
         a receiver: a flat caster (a ground) with every other receiver on its
         lit side is left out.
+    every_caster : numpy.ndarray
+        ``(k, 2, 3)`` in light axes, the boxes of every caster of the snapshot.
     """
 
     rotation: np.ndarray
     receivers: np.ndarray
     casters: np.ndarray
+    every_caster: np.ndarray
+
+    def casters_in(self, fit: SunFit, snapshot: Snapshot) -> list[ActorState]:
+        """Return the casters whose bounds overlap a map's coverage across the light.
+
+        Parameters
+        ----------
+        fit : SunFit
+            The map, looking along this light.
+        snapshot : Snapshot
+            The renderer's actors these boxes were read from.
+
+        Returns
+        -------
+        list of ActorState
+            The casters to draw into the map.
+        """
+        boxes, center, half = self.every_caster, fit.near_center[:2], fit.half_width
+        inside = np.all(boxes[:, 1, :2] >= center - half, axis=1) & np.all(
+            boxes[:, 0, :2] <= center + half, axis=1
+        )
+        return [caster for caster, keep in zip(snapshot.casters, inside, strict=True) if keep]
 
     @cached_property
     def receiver_extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -455,14 +457,12 @@ def sun_actors(pose: LightPose, snapshot: Snapshot) -> SunActors | None:
     if not keep.all():
         for row in np.flatnonzero(~keep).tolist():
             keep[row] = not _flat_and_lit_above(casters[row], pose.direction, snapshot)
-    shadowing = snapshot.casters_at(np.flatnonzero(keep))
-    if not shadowing:
+    if not keep.any():
         return None
-    return SunActors(
-        rotation,
-        _light_boxes(rotation, snapshot.receiver_bounds),
-        _light_boxes(rotation, snapshot.bounds_of(shadowing)),
-    )
+    # One pass over every actor: receivers and casters are mostly the same actors.
+    boxes = _light_boxes(rotation, snapshot.actor_bounds)
+    every_caster = boxes[snapshot.caster_index]
+    return SunActors(rotation, boxes[snapshot.receiver_index], every_caster[keep], every_caster)
 
 
 def sun_fit(actors: SunActors, clip_to_world: np.ndarray, resolution: int) -> SunFit | None:

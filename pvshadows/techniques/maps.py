@@ -211,7 +211,8 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         state.fit = fit
         kept = state.casters_of
         if kept is None or kept[0] is not fit or kept[1] is not actors:
-            kept = state.casters_of = (fit, actors, fit.casters_in(context.snapshot))
+            assert seen_by_sun is not None  # a fit is made from it
+            kept = state.casters_of = (fit, actors, seen_by_sun.casters_in(fit, context.snapshot))
         drawn = kept[2]
         state.world_to_light = fit.world_to_light()
         state.light_to_clip = np.diag([1.0 / fit.half_width, 1.0 / fit.half_width, 0.0, 1.0])
