@@ -397,8 +397,11 @@ def _plan_light(
         return plan, None
     technique, why = _technique_for(plan.kind, settings, shared.only_a_plane)
     casters = snapshot.casters
-    reached = reach.reaches(plan.key, pose, snapshot)
-    reached_receivers = reached[snapshot.receiver_index]
+    if pose.kind is LightKind.SPOT:
+        reached = reach.reaches(plan.key, pose, snapshot)
+        reached_receivers = reached[snapshot.receiver_index]
+    else:  # a point light or a sun reaches every actor
+        reached, reached_receivers = None, snapshot.every_receiver
     use: ViewUse = reached_receivers
     if not shared.in_view.sees_some(reached_receivers):
         plan.notes.append(
@@ -408,13 +411,17 @@ def _plan_light(
             else "the camera sees no receiver: the light casts nothing and costs nothing"
         )
         return plan, use
-    hits = reached[snapshot.caster_index]
-    within = snapshot.casters_at(np.flatnonzero(hits))
+    hits = None if reached is None else reached[snapshot.caster_index]
+    within = casters if hits is None else snapshot.casters_at(np.flatnonzero(hits))
     if not within:
         plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
         return plan, use
     plan.notes.append(why)
-    box = snapshot.casters_box if within is casters else box_around(snapshot.caster_bounds[hits])
+    box = (
+        snapshot.casters_box
+        if hits is None or within is casters
+        else box_around(snapshot.caster_bounds[hits])
+    )
     if technique == "cubemap" and pose.kind is LightKind.POINT:
         technique, pose = _fit_far_point(pose, box, plan.notes)
     elif technique == "map" and pose.kind is LightKind.SPOT:

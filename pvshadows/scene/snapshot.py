@@ -243,6 +243,18 @@ class Snapshot:
         return np.flatnonzero(self._role_rows[CASTERS] >= 0)
 
     @cached_property
+    def every_receiver(self) -> np.ndarray:
+        """``(n,)`` read-only, true for each of :attr:`receivers`.
+
+        What a light that reaches every actor reaches of them: one array per
+        snapshot, so that what the camera saw of it last frame answers first
+        (:class:`pvshadows.pipeline.sight.ViewSight`).
+        """
+        every = np.ones(len(self.receivers), dtype=bool)
+        every.setflags(write=False)
+        return every
+
+    @cached_property
     def receiver_index(self) -> np.ndarray:
         """Rows of :attr:`actors` that are :attr:`receivers`, in order."""
         return np.flatnonzero(self._role_rows[RECEIVERS] >= 0)
