@@ -47,7 +47,10 @@ def cube_passes(
     >>> cube_passes(ShadowSettings(), [], Snapshot([], []), []).passes
     'single'
     """
-    triangles = int(snapshot.caster_triangles[snapshot.caster_rows(casters)].sum())
+    counts = snapshot.caster_triangles
+    triangles = int(
+        counts.sum() if casters is snapshot.casters else counts[snapshot.caster_rows(casters)].sum()
+    )
     if triangles < SIX_PASSES_FROM:
         return _with_passes(settings, "single")
     notes.append(
@@ -68,7 +71,9 @@ def _with_passes(settings: ShadowSettings, passes: str) -> ShadowSettings:
     A light that moves is planned again each frame; the same settings object
     spares the copy and lets the next frame's plan compare it by identity.
     """
-    resolved = _RESOLVED.setdefault(settings, {})
+    resolved = _RESOLVED.get(settings)
+    if resolved is None:
+        resolved = _RESOLVED[settings] = {}
     if passes not in resolved:
         resolved[passes] = replace(settings, passes=passes)
     return resolved[passes]
