@@ -104,15 +104,14 @@ class ViewSight:
         """
         key = 0 if among is None else id(among)
         row = self._witnesses.get(key)
-        if (
-            self._every is None
-            and row is not None
-            and row < len(self._bounds)
-            and (among is None or among[row])
-        ):
-            self.tested += 1
-            if self._box_seen(*self._bounds[row].tolist()):
-                return True
+        if row is not None and row < len(self._bounds) and (among is None or among[row]):
+            if self._every is not None:  # every receiver tested already: read the witness's
+                if self._every[row]:
+                    return True
+            else:
+                self.tested += 1
+                if self._box_seen(*self._bounds[row].tolist()):
+                    return True
         seen = self.every if among is None else self.every & among
         rows = np.flatnonzero(seen)
         if not len(rows):
