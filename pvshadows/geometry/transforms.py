@@ -142,7 +142,10 @@ def cube_face_projections(near: float, far: float) -> np.ndarray:
     >>> cube_face_projections(0.1, 10.0).shape
     (6, 4, 4)
     """
-    return perspective(90.0, 1.0, near, far) @ _FACE_ROTATIONS
+    # Only the depth row depends on near and far: each face's is (a, b) times its rotation's
+    # third row and last column, as perspective(90.0, 1.0, near, far) @ rotation gives it.
+    depth, shift = (far + near) / (near - far), 2.0 * far * near / (near - far)
+    return _FACE_FIXED + depth * _FACE_DEPTH + shift * _FACE_SHIFT
 
 
 def boxes_from_origin(boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -180,14 +183,13 @@ def boxes_from_origin(boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
     # Along each axis, the reach of the box's nearer side: negative outside the box's slab.
     nearer = np.minimum(reach[:, :3], reach[:, 3:])
     outside = np.minimum(nearer, 0.0)
-    farther = np.abs(reach).reshape(-1, 2, 3).max(axis=1)
+    farther = np.maximum.reduce(np.abs(reach).reshape(-1, 2, 3), axis=1)
     near, far = np.einsum("ij,ij->i", outside, outside), np.einsum("ij,ij->i", farther, farther)
     # A face's four side planes each weigh its axis and one other: a box is inside them
     # when it reaches ahead along the face's axis at least as far as it lies outside the
     # slab of either other axis.
-    beside = np.maximum(-nearer[:, _OTHER_AXES].min(axis=2), 0.0)
-    inside = reach[:, _FACE_REACH] >= beside[:, _FACE_AXIS]
-    return near, far, inside.astype(np.int64) @ _FACE_BITS
+    beside = np.maximum(-np.minimum.reduce(nearer[:, _FACE_OTHER_AXES], axis=2), 0.0)
+    return near, far, (reach[:, _FACE_REACH] >= beside) @ _FACE_BITS
 
 
 def faces_touching_boxes(boxes: np.ndarray) -> np.ndarray:
@@ -215,11 +217,19 @@ def faces_touching_boxes(boxes: np.ndarray) -> np.ndarray:
 
 
 #: Each face's rotation; the axis it looks along; the column of its direction in a box's
-#: reaches (-x, -y, -z, +x, +y, +z); the two other axes of each axis; each face's bit.
+#: reaches (-x, -y, -z, +x, +y, +z); the two other axes of each face; each face's bit.
 _FACE_ROTATIONS = np.stack([cube_face_rotation(face) for face in range(6)])
+#: The parts of :func:`cube_face_projections`: the rows near and far leave alone, and the
+#: depth row's two terms.
+_FACE_FIXED = perspective(90.0, 1.0, 1.0, 2.0) @ _FACE_ROTATIONS
+_FACE_FIXED[:, 2] = 0.0
+_FACE_DEPTH = np.zeros((6, 4, 4))
+_FACE_DEPTH[:, 2] = _FACE_ROTATIONS[:, 2]
+_FACE_SHIFT = np.zeros((6, 4, 4))
+_FACE_SHIFT[:, 2, 3] = 1.0
 _FACE_AXIS = np.array([int(np.argmax(np.abs(forward))) for forward, _ in CUBE_FACE_AXES])
 _FACE_REACH = _FACE_AXIS + 3 * np.array([int(sum(forward) > 0.0) for forward, _ in CUBE_FACE_AXES])
-_OTHER_AXES = np.array([[o for o in range(3) if o != axis] for axis in range(3)])
+_FACE_OTHER_AXES = np.array([[o for o in range(3) if o != axis] for axis in _FACE_AXIS])
 _FACE_BITS = 1 << np.arange(6)
 #: Signs turning a box's ``(low, high)`` corners into its reaches ``(-low, high)``.
 _REACH_SIGNS = np.array([[-1.0], [1.0]])

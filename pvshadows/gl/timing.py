@@ -15,8 +15,6 @@ from __future__ import annotations
 
 import ctypes
 import time
-from collections.abc import Iterator
-from contextlib import contextmanager
 
 import numpy as np
 
@@ -43,15 +41,16 @@ class PassTimer:
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._gl = opengl_for(window)
         self._calls = raw_calls()
+        #: ``glQueryCounter``, through plain ctypes.
+        self.query_counter = self._calls.query_counter
         self._free: list[int] = []
         self._pending: list[tuple[int, int, PassReport, int]] = []
         self._frame = 0
         #: Results read with a wait because the GPU had not finished them in time.
         self.waited = 0
 
-    @contextmanager
-    def measure(self, report: PassReport) -> Iterator[None]:
-        """Time the GL work issued inside the block into ``report.ms``.
+    def measure(self, report: PassReport) -> _Measured:
+        """Time the GL work issued inside the ``with`` block into ``report.ms``.
 
         The CPU time of issuing it goes to ``report.cpu_ms`` at once.
 
@@ -60,22 +59,19 @@ class PassTimer:
         report : PassReport
             Receives its ``ms`` when :meth:`collect` runs.
 
-        Yields
-        ------
-        None
+        Returns
+        -------
+        context manager
+            Brackets the pass with two timestamp queries.
         """
         if len(self._free) < 2:
             self._free.extend(int(q) for q in np.asarray(self._gl.glGenQueries(2)).ravel())
-        start, end = self._free.pop(), self._free.pop()
-        counter = self._calls.query_counter
-        began = time.thread_time()
-        counter(start, _TIMESTAMP)
-        try:
-            yield
-        finally:
-            counter(end, _TIMESTAMP)
-            self._pending.append((start, end, report, self._frame))
-            report.cpu_ms += (time.thread_time() - began) * 1e3
+        return _Measured(self, report, self._free.pop(), self._free.pop())
+
+    def _ended(self, start: int, end: int, report: PassReport, began: float) -> None:
+        self.query_counter(end, _TIMESTAMP)
+        self._pending.append((start, end, report, self._frame))
+        report.cpu_ms += (time.thread_time() - began) * 1e3
 
     def collect(self, *, wait: bool = False) -> None:
         """Read the queries the GPU has finished into their reports; keep the others.
@@ -116,3 +112,21 @@ class PassTimer:
             self._gl.glDeleteQueries(len(queries), queries)
         self._free.clear()
         self._pending.clear()
+
+
+class _Measured:
+    """The ``with`` block of :meth:`PassTimer.measure` (a class: a generator costs more calls)."""
+
+    __slots__ = ("_began", "_counter", "_end", "_report", "_start", "_timer")
+
+    def __init__(self, timer: PassTimer, report: PassReport, start: int, end: int) -> None:
+        self._timer, self._report, self._start, self._end = timer, report, start, end
+        self._counter = timer.query_counter
+        self._began = 0.0
+
+    def __enter__(self) -> None:
+        self._began = time.thread_time()
+        self._counter(self._start, _TIMESTAMP)
+
+    def __exit__(self, *exc: object) -> None:
+        self._timer._ended(self._start, self._end, self._report, self._began)

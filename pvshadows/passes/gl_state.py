@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from contextlib import contextmanager
+from types import ModuleType
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
@@ -27,7 +28,10 @@ def depth_only_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
     module
         ``OpenGL.GL``, for the pass's own calls.
     """
-    with _offscreen_pass(window) as (gl, state):
+    gl, state = opengl_for(window), window.GetState()
+    state.Push()
+    try:
+        _enter_map_pass(gl, state)
         state.vtkglDisable(gl.GL_BLEND)
         state.vtkglEnable(gl.GL_DEPTH_TEST)
         state.vtkglDepthFunc(gl.GL_LESS)
@@ -35,29 +39,27 @@ def depth_only_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
         state.vtkglColorMask(False, False, False, False)
         state.vtkglClearDepth(1.0)
         yield gl
+    finally:
+        _leave_map_pass(gl, state)
 
 
-@contextmanager
-def _offscreen_pass(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
-    """Push VTK's state, set what every map pass shares, and pop it afterwards.
+def _enter_map_pass(gl: ModuleType, state: vtk.vtkOpenGLState) -> None:
+    """Set what every map pass shares, VTK's state pushed.
 
     Every map pass draws without scissor, stencil or culling (a caster asks
     for culling itself) and with depth clamping, so casters beyond the map's
-    far plane stay drawn; VTK does not track depth clamping, so it is
-    switched back off here. Yields ``(OpenGL.GL, vtkOpenGLState)``.
+    far plane stay drawn.
     """
-    gl = opengl_for(window)
-    state = window.GetState()
-    state.Push()
-    try:
-        state.vtkglDisable(gl.GL_SCISSOR_TEST)
-        state.vtkglDisable(gl.GL_STENCIL_TEST)
-        state.vtkglDisable(gl.GL_CULL_FACE)
-        gl.glEnable(gl.GL_DEPTH_CLAMP)
-        yield gl, state
-    finally:
-        gl.glDisable(gl.GL_DEPTH_CLAMP)
-        state.Pop()
+    state.vtkglDisable(gl.GL_SCISSOR_TEST)
+    state.vtkglDisable(gl.GL_STENCIL_TEST)
+    state.vtkglDisable(gl.GL_CULL_FACE)
+    gl.glEnable(gl.GL_DEPTH_CLAMP)
+
+
+def _leave_map_pass(gl: ModuleType, state: vtk.vtkOpenGLState) -> None:
+    """Switch depth clamping back off (VTK does not track it) and pop VTK's state."""
+    gl.glDisable(gl.GL_DEPTH_CLAMP)
+    state.Pop()
 
 
 class FaceCulling:
@@ -107,7 +109,10 @@ def transmittance_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
     module
         ``OpenGL.GL``, for the pass's own calls.
     """
-    with _offscreen_pass(window) as (gl, state):
+    gl, state = opengl_for(window), window.GetState()
+    state.Push()
+    try:
+        _enter_map_pass(gl, state)
         state.vtkglDisable(gl.GL_DEPTH_TEST)
         state.vtkglDepthMask(False)
         state.vtkglColorMask(True, True, True, True)
@@ -116,3 +121,5 @@ def transmittance_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
         state.vtkglBlendFuncSeparate(gl.GL_ZERO, gl.GL_SRC_COLOR, gl.GL_ONE, gl.GL_ONE)
         state.vtkglClearColor(1.0, 1.0, 1.0, 1.0)
         yield gl
+    finally:
+        _leave_map_pass(gl, state)

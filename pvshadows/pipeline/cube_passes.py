@@ -47,10 +47,7 @@ def cube_passes(
     >>> cube_passes(ShadowSettings(), [], Snapshot([], []), []).passes
     'single'
     """
-    counts = snapshot.caster_triangles
-    triangles = int(
-        counts.sum() if casters is snapshot.casters else counts[snapshot.caster_rows(casters)].sum()
-    )
+    triangles = int(snapshot.for_casters(snapshot.caster_triangles, casters).sum())
     if triangles < SIX_PASSES_FROM:
         return _with_passes(settings, "single")
     notes.append(

@@ -18,7 +18,7 @@ import math
 from collections.abc import Callable
 from dataclasses import fields, replace
 from functools import cached_property
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -58,6 +58,8 @@ FIT_CONE_BELOW = 30.0
 #: a perspective map's depth bias (the standard scene: 0.57 % wrong at 1e4, 7.3 % at 2e4),
 #: while the rays' spread over the casters moves no edge by a texel (0.026-0.028 % there).
 PARALLEL_BELOW = 2e-3
+#: The sine of :data:`FIT_CONE_BELOW`.
+_FIT_CONE_SINE = float(np.sin(np.radians(FIT_CONE_BELOW)))
 
 
 def _technique_for(
@@ -456,30 +458,41 @@ def _fields_of(cast: Cast) -> dict[str, Any]:
     return {f.name: getattr(cast, f.name) for f in fields(Cast)}
 
 
-def _casters_seen_from(pose: LightPose, box: np.ndarray) -> tuple[float, float, np.ndarray]:
-    """Return the radius of the sphere around casters' ``(2, 3)`` box, its distance, direction."""
+class _SeenFrom(NamedTuple):
+    """The sphere around casters' box as a light sees it."""
+
+    radius: float
+    distance: float
+    #: From the light to the sphere's centre, in plain floats.
+    away: list[float]
+
+    @property
+    def direction(self) -> np.ndarray:
+        """The unit vector from the light to the centre."""
+        return np.array(self.away) / max(self.distance, 1e-300)
+
+
+def _casters_seen_from(pose: LightPose, box: np.ndarray) -> _SeenFrom:
+    """Return the sphere around casters' ``(2, 3)`` box: its radius, distance and offset."""
     # plain floats for three-vectors: numpy's per-call cost outweighs its speed here
     lo, hi = box.tolist()
     centre = [(a + b) / 2.0 for a, b in zip(lo, hi, strict=True)]
     away = [c - p for c, p in zip(centre, pose.position.tolist(), strict=True)]
-    distance = math.hypot(*away)
-    radius = math.dist(lo, hi) / 2.0
-    return radius, distance, np.array(away) / max(distance, 1e-300)
+    return _SeenFrom(math.dist(lo, hi) / 2.0, math.hypot(*away), away)
 
 
-def _parallel(
-    pose: LightPose, radius: float, distance: float, direction: np.ndarray, notes: list[str]
-) -> LightPose:
+def _parallel(pose: LightPose, seen_from: _SeenFrom, notes: list[str]) -> LightPose:
+    radius, distance, _ = seen_from
     half = float(np.degrees(np.arcsin(radius / distance)))
     notes.append(
         f"the casters subtend {2 * half:.3g} degrees from the light: its rays are nearly "
         "parallel there, and a perspective map this far away would round depths by more "
         "than its bias, so an orthographic map along them"
     )
-    return LightPose(LightKind.DIRECTIONAL, pose.position, direction, 180.0)
+    return LightPose(LightKind.DIRECTIONAL, pose.position, seen_from.direction, 180.0)
 
 
-def _far(seen_from: tuple[float, float, np.ndarray]) -> bool:
+def _far(seen_from: _SeenFrom) -> bool:
     """Whether casters (:func:`_casters_seen_from`) are so far that the rays are nearly parallel."""
     radius, distance, _ = seen_from
     return distance > 0.0 and radius / distance < PARALLEL_BELOW
@@ -487,7 +500,7 @@ def _far(seen_from: tuple[float, float, np.ndarray]) -> bool:
 
 def _fit_far_spot(
     pose: LightPose,
-    seen_from: tuple[float, float, np.ndarray],
+    seen_from: _SeenFrom,
     seen: list[ActorState],
     notes: list[str],
 ) -> LightPose:
@@ -499,13 +512,12 @@ def _fit_far_spot(
     orthographic lookup has no cone to leave the rest unlit). ``seen_from``
     is what :func:`_casters_seen_from` says of the casters.
     """
-    radius, distance, direction = seen_from
     corners = box_corners(np.array([r.bounds for r in seen]).reshape(-1, 2, 3)).reshape(-1, 3)
     rays = corners - pose.position
     cosines = rays @ pose.direction / np.linalg.norm(rays, axis=1)
     if np.any(cosines < np.cos(np.radians(pose.cone_angle))):
         return pose
-    return _parallel(pose, radius, distance, direction, notes)
+    return _parallel(pose, seen_from, notes)
 
 
 def _fit_far_point(pose: LightPose, box: np.ndarray, notes: list[str]) -> tuple[str, LightPose]:
@@ -516,14 +528,15 @@ def _fit_far_point(pose: LightPose, box: np.ndarray, notes: list[str]) -> tuple[
     every texel on them, at any distance. Receivers outside the cone stay
     lit (nothing there can shadow them). ``box`` is the ``(2, 3)`` box around the casters.
     """
-    radius, distance, direction = _casters_seen_from(pose, box)
-    if distance <= radius / np.sin(np.radians(FIT_CONE_BELOW)):
+    seen_from = _casters_seen_from(pose, box)
+    radius, distance, _ = seen_from
+    if distance <= radius / _FIT_CONE_SINE:
         return "cubemap", pose
     half = float(np.degrees(np.arcsin(radius / distance)))
     if radius / distance < PARALLEL_BELOW:
-        return "map", _parallel(pose, radius, distance, direction, notes)
+        return "map", _parallel(pose, seen_from, notes)
     notes.append(
         f"the casters subtend {2 * half:.3g} degrees from the light: a perspective map "
         "aimed at them instead of a cube"
     )
-    return "map", LightPose(LightKind.SPOT, pose.position, direction, half)
+    return "map", LightPose(LightKind.SPOT, pose.position, seen_from.direction, half)

@@ -550,9 +550,41 @@ class Snapshot:
         numpy.ndarray
             Their rows of :attr:`caster_bounds`, gathered without stacking again.
         """
+        return self.for_casters(self.caster_bounds, casters)
+
+    def for_casters(self, values: np.ndarray, casters: list[ActorState]) -> np.ndarray:
+        """Return the rows of a per-caster array that belong to some of this snapshot's casters.
+
+        Parameters
+        ----------
+        values : numpy.ndarray
+            One row per caster of :attr:`casters`.
+        casters : list of ActorState
+            Casters of this snapshot.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``values`` itself for every caster, else their rows gathered.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import pyvista as pv
+        >>> from pvshadows.scene.snapshot import SceneReader
+        >>> pl = pv.Plotter(off_screen=True)
+        >>> for x in range(2):
+        ...     _ = pl.add_mesh(pv.Cube(center=(2 * x, 0, 0)))
+        >>> snapshot = SceneReader(lambda actor: "a cube").read(pl.renderer)
+        >>> values = np.array([10, 20])
+        >>> snapshot.for_casters(values, snapshot.casters) is values
+        True
+        >>> snapshot.for_casters(values, snapshot.casters_at(np.array([1]))).tolist()
+        [20]
+        """
         if casters is self.casters:
-            return self.caster_bounds
-        return self.caster_bounds[self.caster_rows(casters)]
+            return values
+        return values[self.caster_rows(casters)]
 
 
 _NO_SPAN = (math.inf, -math.inf)

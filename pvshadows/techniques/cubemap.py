@@ -229,8 +229,10 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         state.planned = None
         position, snapshot = plan.pose.position, context.snapshot
         measures = state.measures.of(plan.pose, snapshot)
-        rows = snapshot.caster_rows(plan.casters)
-        state.nearest, state.far = distance_range(measures.near[rows], measures.far[rows])
+        state.nearest, state.far = distance_range(
+            snapshot.for_casters(measures.near, plan.casters),
+            snapshot.for_casters(measures.far, plan.casters),
+        )
         companion = self._update_companion(plan, context, state, translucent)
         state.drawn = bool(opaque)
         if not opaque:
@@ -251,7 +253,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         casters = caster_draws(
             opaque, translation(-position), context.snapshot, context.buffers, settings
         )
-        masks = measures.faces[snapshot.caster_rows(opaque)]
+        masks = snapshot.for_casters(measures.faces, opaque)
         assert self._pass is not None
         reports = self._pass.render(
             state.cube, casters, masks, state.far, settings.passes, context.timer

@@ -145,8 +145,10 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         if range_key != state.range_key or state.range_snapshot is not context.snapshot:
             snapshot = context.snapshot
             measures = state.measures.of(pose, snapshot)
-            ranged_rows = snapshot.caster_rows(ranged)
-            nearest, far = distance_range(measures.near[ranged_rows], measures.far[ranged_rows])
+            nearest, far = distance_range(
+                snapshot.for_casters(measures.near, ranged),
+                snapshot.for_casters(measures.far, ranged),
+            )
             shadowing = spot_shadowing_rows(pose, inside, snapshot)
             spread = float(measures.spread[shadowing].max()) if len(shadowing) else None
             fit = spot_fit(pose, settings.resolution, far * 1e-4, far, spread)
