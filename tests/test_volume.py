@@ -45,7 +45,10 @@ def assert_no_gl_error(plotter):
 @pytest.mark.parametrize("zmode", ["zpass", "zfail"])
 @pytest.mark.parametrize("extrude", ["gpu", "cpu"])
 def test_standard_scene_is_pixel_exact(scene, extrude, zmode):
-    error = measured(scene, extrude=extrude, zmode=zmode)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        error = measured(scene, extrude=extrude, zmode=zmode)
+    assert not caught  # a forced z-pass is right here: no warning
     assert error.lit_pixels > 100_000
     assert error.misclassified <= EXACT
     assert scene.plotter.ren_win.GetMultiSamples() > 1  # PyVista's multisampled window
@@ -78,8 +81,17 @@ def test_camera_inside_a_volume_needs_zfail_and_auto_chooses_it():
     assert any(note.startswith("zfail: the camera may be inside") for note in report.notes)
     assert "stencil count (zfail, gpu extrusion)" in [p.name for p in report.passes]
     forced = standard_scene(camera=IN_THE_BOX_SHADOW)
-    wrong = measured(forced, zmode="zpass")
+    with pytest.warns(UserWarning, match="zmode='zpass', which may miscount here: the camera"):
+        wrong = measured(forced, zmode="zpass")
     assert wrong.misclassified > 0.5  # z-pass from inside a volume inverts the count
+    assert any(
+        note.startswith("zpass: zpass forced by zmode='zpass', although z-pass may miscount")
+        for note in volume_light_report(forced.plotter).notes
+    )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        draw(forced.plotter)
+    assert not caught  # said once
 
 
 def test_a_wireframe_caster_is_counted_with_zfail_as_the_camera_sees_into_its_volume():
@@ -94,7 +106,8 @@ def test_a_wireframe_caster_is_counted_with_zfail_as_the_camera_sees_into_its_vo
     )
     forced = standard_scene()
     forced.box.prop.style = "wireframe"
-    wrong = measured(forced, zmode="zpass")
+    with pytest.warns(UserWarning, match="may miscount here: actor 'box' is drawn without faces"):
+        wrong = measured(forced, zmode="zpass")
     assert wrong.misclassified > 0.002  # entering the volume through its light cap is not counted
     forced.plotter.enable_hidden_line_removal()  # the faces hide the inside again
     draw(forced.plotter)

@@ -68,7 +68,7 @@ class RendererShadows:
         self._warned: set[tuple[str, str]] = set()
         #: What each spot light reached, kept between frames (``reach.tests`` counts cone tests).
         self.reach = ReachCache()
-        #: Open casters of volume lights already warned about (one warning each).
+        #: Warnings of volume lights already given: open casters, forced z-pass (one each).
         self.warned_open: set[tuple] = set()
         #: Each light's last plan, kept while its inputs hold (``memo.planned`` counts replans).
         self.memo = PlanMemo()

@@ -274,8 +274,9 @@ def plan_frame(
     view : FrameView, optional
         This frame's camera; built from the renderer by default.
     warned : set of tuple, optional
-        Open casters of volume lights already warned about, kept between
-        frames so each warns once (:func:`pvshadows.pipeline.volume_plan.plan_volume`).
+        Warnings of volume lights already given (open casters, a forced
+        z-pass that may miscount), kept between frames so each warns once
+        (:func:`pvshadows.pipeline.volume_plan.plan_volume`).
     memo : PlanMemo, optional
         Last frame's plans: a light's is kept when the actors, the light,
         its settings and the receivers in view are last frame's.
@@ -314,7 +315,7 @@ def plan_frame(
             if memo is not None:
                 memo.keep(inputs, plan, use, in_view)
         elif isinstance(plan.cast, VolumeCast):
-            choose_volume_zmode(plan.cast, plan.cast.volume, renderer)
+            choose_volume_zmode(plan.cast, plan.cast.volume, renderer, warned)
         if vtk.vtkLight.GetSwitch(light):
             vtk_index += 1
         plans.append(plan)

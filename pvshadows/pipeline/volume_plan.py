@@ -50,8 +50,9 @@ def plan_volume(
     snapshot : Snapshot
         This frame's actors.
     warned : set of tuple
-        Open casters already warned about, kept between frames (one warning
-        per caster, version of its data, kind of light and outcome).
+        Warnings already given, kept between frames: one per open caster,
+        version of its data, kind of light and outcome, and one per light
+        and reason its forced z-pass may miscount.
     extrude_on_gpu : callable
         Tells whether the window compiles the extruding geometry shader
         (asked only when the settings want it).
@@ -91,15 +92,19 @@ def plan_volume(
         extrude = "cpu"
         plan.notes.append("the extruding geometry shader does not compile here: cpu extrusion")
     volume = VolumePlan(closed, light, None, "", extrude, fallback)
-    choose_volume_zmode(plan, volume, renderer)
+    choose_volume_zmode(plan, volume, renderer, warned)
     return volume
 
 
-def choose_volume_zmode(plan: Cast, volume: VolumePlan, renderer: vtk.vtkRenderer) -> None:
+def choose_volume_zmode(
+    plan: Cast, volume: VolumePlan, renderer: vtk.vtkRenderer, warned: set[tuple]
+) -> None:
     """Choose z-pass or z-fail for the renderer's camera now; say it in ``plan.notes``.
 
     The rest of a volume plan holds while only the camera moves: this part
-    alone is chosen again then.
+    alone is chosen again then. A forced ``zmode="zpass"`` is kept, but
+    where ``"auto"`` would count with z-fail the note says why z-pass may
+    miscount, and a warning says it once per light and reason.
 
     Parameters
     ----------
@@ -110,25 +115,25 @@ def choose_volume_zmode(plan: Cast, volume: VolumePlan, renderer: vtk.vtkRendere
         caster counts nothing and is left alone.
     renderer : vtk.vtkRenderer
         The renderer, whose camera decides.
+    warned : set of tuple
+        Warnings already given, kept between frames.
     """
     if volume.enclosing is not None:
         return
-    open_to_view = [c.name for c, _ in volume.closed if not hides_what_is_behind(c, renderer)]
-    if plan.settings.zmode == "auto" and open_to_view:
-        zmode, why = (
-            "zfail",
-            (
-                f"{open_to_view[0]} is drawn without faces: the camera sees into its shadow volume "
-                "through them, which only z-fail counts"
-            ),
-        )
-    else:
-        zmode, why = choose_zmode(
-            plan.settings.zmode,
-            volume.light,
-            renderer,
-            [(c.name, c.bounds) for c, _ in volume.closed],
-        )
+    zmode, why = _zmode_for(plan.settings.zmode, volume, renderer)
+    if plan.settings.zmode == "zpass":
+        auto, risk = _zmode_for("auto", volume, renderer)
+        if auto == "zfail":
+            why = f"{why}, although z-pass may miscount here: {risk}"
+            key = ("zpass forced", vtk_id(plan.light), risk)
+            if key not in warned:
+                warned.add(key)
+                warnings.warn(
+                    f"pvshadows: light {plan.index} counts its shadow volumes with "
+                    f"zmode='zpass', which may miscount here: {risk}; zmode='auto' would "
+                    "count them with z-fail",
+                    stacklevel=2,
+                )
     note = f"{zmode}: {why}"
     old = f"{volume.zmode}: {volume.zmode_reason}"
     if volume.zmode and old in plan.notes:
@@ -136,6 +141,18 @@ def choose_volume_zmode(plan: Cast, volume: VolumePlan, renderer: vtk.vtkRendere
     else:
         plan.notes.append(note)
     volume.zmode, volume.zmode_reason = zmode, why
+
+
+def _zmode_for(wanted: str, volume: VolumePlan, renderer: vtk.vtkRenderer) -> tuple[str, str]:
+    """Return the counting ``zmode=wanted`` gives a volume plan now, and why."""
+    open_to_view = [c.name for c, _ in volume.closed if not hides_what_is_behind(c, renderer)]
+    if wanted == "auto" and open_to_view:
+        return "zfail", (
+            f"{open_to_view[0]} is drawn without faces: the camera sees into its shadow volume "
+            "through them, which only z-fail counts"
+        )
+    boxes = [(c.name, c.bounds) for c, _ in volume.closed]
+    return choose_zmode(wanted, volume.light, renderer, boxes)
 
 
 def _fallback(
