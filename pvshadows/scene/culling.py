@@ -221,6 +221,75 @@ def box_corners(boxes: np.ndarray) -> np.ndarray:
     return np.where(_CORNERS[None], boxes[:, 1, None, :], boxes[:, 0, None, :])
 
 
+def box_offsets(boxes: np.ndarray, origin: np.ndarray) -> np.ndarray:
+    """Return each box's min and max corners less a point, one coordinate per row.
+
+    Laid out so that every row is contiguous: numpy works through a
+    ``(3, n)`` row of coordinates several times faster than through the
+    strided columns of ``(n, 2, 3)`` boxes.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` min/max corners.
+    origin : numpy.ndarray
+        ``(3,)`` the point.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(2, 3, n)``: ``[0]`` the min corners less ``origin``, ``[1]`` the
+        max corners, each a C-contiguous ``(3, n)``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.culling import box_offsets
+    >>> box_offsets(np.array([[[0.0, 0, 0], [1, 2, 3]]]), np.ones(3))[:, :, 0].tolist()
+    [[-1.0, -1.0, -1.0], [0.0, 1.0, 2.0]]
+    """
+    boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
+    offsets = np.empty((2, 3, len(boxes)))
+    np.subtract(boxes.transpose(1, 2, 0), np.asarray(origin)[None, :, None], out=offsets)
+    return offsets
+
+
+def box_corners_along(boxes: np.ndarray, origin: np.ndarray, rotation: np.ndarray) -> np.ndarray:
+    """Return the eight corners of each box, from a point, in rotated axes.
+
+    The corners of :func:`box_corners` less ``origin``, turned by
+    ``rotation``, one coordinate per row, built from each axis's two
+    terms: no ``(8 n, 3)`` array goes through a matrix product.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` min/max corners.
+    origin : numpy.ndarray
+        ``(3,)`` the point the corners are measured from.
+    rotation : numpy.ndarray
+        ``(3, 3)`` rows: the new axes in world coordinates.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(3, 8, n)``: coordinate, corner (in :func:`box_corners`' order),
+        box.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.culling import box_corners_along
+    >>> swap = np.array([[0.0, 1, 0], [1, 0, 0], [0, 0, 1]])
+    >>> box_corners_along(np.array([[[0.0, 0, 0], [1, 2, 3]]]), np.zeros(3), swap)[:, 7, 0].tolist()
+    [2.0, 1.0, 3.0]
+    """
+    # terms[k, side, axis]: rotated coordinate k of the min or max corner's offset along an axis
+    terms = np.asarray(rotation)[:, None, :, None] * box_offsets(boxes, origin)[None]
+    x, y, z = terms[:, :, 0, None, None], terms[:, None, :, 1, None], terms[:, None, None, :, 2]
+    return (x + y + z).reshape(3, 8, -1)
+
+
 @lru_cache(maxsize=256)
 def _cone_planes(direction: tuple[float, float, float], cone_angle: float) -> np.ndarray:
     """Return the apex plane and the four sides of the pyramid around a cone, ``(5, 3)``.
@@ -246,11 +315,11 @@ def _cone_plane_sides(
 ) -> tuple[np.ndarray, np.ndarray, float, float]:
     """Return what :func:`boxes_in_spot` reads of a cone, once per direction and angle.
 
-    The planes' normals as columns, split into their positive and negative
+    The planes' normals as rows, split into their positive and negative
     parts (which meet a box's max and min corner), and the cosine and sine
     of the cone's angle.
     """
-    normals = _cone_planes(direction, cone_angle).T
+    normals = _cone_planes(direction, cone_angle)
     positive, negative = np.maximum(normals, 0.0), np.minimum(normals, 0.0)
     angle = np.radians(min(cone_angle, 89.9))
     return positive, negative, float(np.cos(angle)), float(np.sin(angle))
@@ -288,6 +357,34 @@ def _one_box_in_spot(lo: list[float], hi: list[float], pose: LightPose) -> bool:
     return across * math.cos(angle) - along * math.sin(angle) <= radius
 
 
+def squared_lengths(rows: np.ndarray) -> np.ndarray:
+    """Return the squared length of each column of a ``(3, n)`` array.
+
+    numpy's norm without its checks, for :func:`box_offsets`' rows.
+
+    Parameters
+    ----------
+    rows : numpy.ndarray
+        ``(3, n)`` one coordinate per row.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n,)`` the sums of the squares, x first.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.culling import squared_lengths
+    >>> squared_lengths(np.array([[3.0, 1], [4, 1], [0, 1]])).tolist()
+    [25.0, 3.0]
+    """
+    x, y, z = rows
+    # x and z first, then y: the order numpy's einsum sums a row of three, so that a
+    # length is the same to the last bit whichever way its box was laid out
+    return (x * x + z * z) + y * y
+
+
 def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:
     """Test many world boxes against a spot light's cone at once, like :func:`box_in_spot`.
 
@@ -322,20 +419,20 @@ def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:
         lo_, hi_ = boxes[0].tolist()
         return np.array([_one_box_in_spot(lo_, hi_, pose)])
     direction = pose.direction
-    lo, hi = boxes[:, 0] - pose.position, boxes[:, 1] - pose.position
-    holds_light = np.minimum(-lo, hi).min(axis=1) >= 0.0
+    lo, hi = box_offsets(boxes, pose.position)
+    holds_light = ((lo <= 0.0) & (hi >= 0.0)).all(axis=0)
     # A box is behind a plane through the light when its corner farthest along the
     # plane's normal is: the normal's positive parts meet ``hi``, its negative ones ``lo``.
     positive, negative, cos, sin = _cone_plane_sides(
         tuple(direction.tolist()), float(pose.cone_angle)
     )
-    behind_a_plane = (hi @ positive + lo @ negative).min(axis=1) < 0.0
+    behind_a_plane = (positive @ hi + negative @ lo).min(axis=0) < 0.0
     center = 0.5 * (lo + hi)
     size = hi - lo
-    radius = 0.5 * np.sqrt((size * size).sum(axis=1))  # numpy's norm, without its checks
-    along = center @ direction
-    aside = center - along[:, None] * direction
-    across = np.sqrt((aside * aside).sum(axis=1))
+    radius = 0.5 * np.sqrt(squared_lengths(size))
+    along = direction @ center
+    aside = center - direction[:, None] * along
+    across = np.sqrt(squared_lengths(aside))
     # Distance from the centre of the sphere around the box to the cone's surface.
     outside = across * cos - along * sin
     return holds_light | (~behind_a_plane & (outside <= radius))

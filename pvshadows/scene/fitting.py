@@ -17,7 +17,7 @@ from typing import NamedTuple
 import numpy as np
 
 from pvshadows.geometry.transforms import look_rotation, perspective, translation
-from pvshadows.scene.culling import box_corners
+from pvshadows.scene.culling import box_corners_along, box_offsets, squared_lengths
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import ActorState, Snapshot
 
@@ -130,10 +130,10 @@ def box_distances_squared(position: np.ndarray, boxes: np.ndarray) -> tuple[np.n
     >>> near.tolist(), far.tolist()
     ([1.0], [6.0])
     """
-    lo, hi = boxes[:, 0] - position, boxes[:, 1] - position
+    lo, hi = box_offsets(boxes, position)
     outside = np.maximum(np.maximum(lo, -hi), 0.0)
     corner = np.maximum(np.abs(lo), np.abs(hi))
-    return np.einsum("ij,ij->i", outside, outside), np.einsum("ij,ij->i", corner, corner)
+    return squared_lengths(outside), squared_lengths(corner)
 
 
 class ConeMeasures(NamedTuple):
@@ -181,14 +181,13 @@ def cone_measures(pose: LightPose, boxes: np.ndarray) -> ConeMeasures:
     [0.5, inf]
     """
     near, far = box_distances_squared(pose.position, boxes)
-    rotation = _spot_rotation(pose)
-    local = ((box_corners(boxes) - pose.position) @ rotation[:3, :3].T).reshape(-1, 8, 3)
-    depth = -local[..., 2]
-    in_front = (depth > 0.0).all(axis=1)
+    x, y, z = box_corners_along(boxes, pose.position, _spot_rotation(pose)[:3, :3])
+    depth = np.negative(z)
+    in_front = depth.min(axis=0) > 0.0
     # a box with a corner beside or behind the light spreads without bound: divided by 1
     # here (no warning), then marked infinite
-    depth[~in_front] = 1.0
-    spread = (np.abs(local[..., :2]) / depth[..., None]).max(axis=(1, 2))
+    depth[:, ~in_front] = 1.0
+    spread = (np.maximum(np.abs(x), np.abs(y)) / depth).max(axis=0)
     spread[~in_front] = np.inf
     return ConeMeasures(near, far, spread)
 
@@ -301,8 +300,8 @@ class SunFit:
 
 
 def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    rotated = box_corners(boxes) @ rotation[:3, :3].T
-    return np.stack([rotated.min(axis=1), rotated.max(axis=1)], axis=1)
+    rotated = box_corners_along(boxes, np.zeros(3), rotation[:3, :3])
+    return np.stack([rotated.min(axis=1).T, rotated.max(axis=1).T], axis=1)
 
 
 #: The corners of clip space's cube, homogeneous.
