@@ -254,19 +254,17 @@ def box_offsets(boxes: np.ndarray, origin: np.ndarray) -> np.ndarray:
     return offsets
 
 
-def box_corners_along(boxes: np.ndarray, origin: np.ndarray, rotation: np.ndarray) -> np.ndarray:
-    """Return the eight corners of each box, from a point, in rotated axes.
+def box_corners_along(offsets: np.ndarray, rotation: np.ndarray) -> np.ndarray:
+    """Return the eight corners of each box of :func:`box_offsets`, in rotated axes.
 
-    The corners of :func:`box_corners` less ``origin``, turned by
+    The corners of :func:`box_corners` less the offsets' origin, turned by
     ``rotation``, one coordinate per row, built from each axis's two
     terms: no ``(8 n, 3)`` array goes through a matrix product.
 
     Parameters
     ----------
-    boxes : numpy.ndarray
-        ``(n, 2, 3)`` min/max corners.
-    origin : numpy.ndarray
-        ``(3,)`` the point the corners are measured from.
+    offsets : numpy.ndarray
+        ``(2, 3, n)`` boxes' corners less a point, from :func:`box_offsets`.
     rotation : numpy.ndarray
         ``(3, 3)`` rows: the new axes in world coordinates.
 
@@ -279,13 +277,14 @@ def box_corners_along(boxes: np.ndarray, origin: np.ndarray, rotation: np.ndarra
     Examples
     --------
     >>> import numpy as np
-    >>> from pvshadows.scene.culling import box_corners_along
+    >>> from pvshadows.scene.culling import box_corners_along, box_offsets
+    >>> offsets = box_offsets(np.array([[[0.0, 0, 0], [1, 2, 3]]]), np.zeros(3))
     >>> swap = np.array([[0.0, 1, 0], [1, 0, 0], [0, 0, 1]])
-    >>> box_corners_along(np.array([[[0.0, 0, 0], [1, 2, 3]]]), np.zeros(3), swap)[:, 7, 0].tolist()
+    >>> box_corners_along(offsets, swap)[:, 7, 0].tolist()
     [2.0, 1.0, 3.0]
     """
     # terms[k, side, axis]: rotated coordinate k of the min or max corner's offset along an axis
-    terms = np.asarray(rotation)[:, None, :, None] * box_offsets(boxes, origin)[None]
+    terms = np.asarray(rotation)[:, None, :, None] * offsets[None]
     x, y, z = terms[:, :, 0, None, None], terms[:, None, :, 1, None], terms[:, None, None, :, 2]
     return (x + y + z).reshape(3, 8, -1)
 
@@ -370,7 +369,7 @@ def squared_lengths(rows: np.ndarray) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        ``(n,)`` the sums of the squares, x first.
+        ``(n,)`` the sums of the squares: x's and z's, then y's.
 
     Examples
     --------
@@ -381,7 +380,7 @@ def squared_lengths(rows: np.ndarray) -> np.ndarray:
     """
     x, y, z = rows
     # x and z first, then y: the order numpy's einsum sums a row of three, so that a
-    # length is the same to the last bit whichever way its box was laid out
+    # length is the same to the last bit as einsum's over an (n, 3) array
     return (x * x + z * z) + y * y
 
 

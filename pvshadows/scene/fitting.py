@@ -130,7 +130,12 @@ def box_distances_squared(position: np.ndarray, boxes: np.ndarray) -> tuple[np.n
     >>> near.tolist(), far.tolist()
     ([1.0], [6.0])
     """
-    lo, hi = box_offsets(boxes, position)
+    return _distances_squared(box_offsets(boxes, position))
+
+
+def _distances_squared(offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return :func:`box_distances_squared` of boxes less the point (:func:`box_offsets`)."""
+    lo, hi = offsets
     outside = np.maximum(np.maximum(lo, -hi), 0.0)
     corner = np.maximum(np.abs(lo), np.abs(hi))
     return squared_lengths(outside), squared_lengths(corner)
@@ -180,8 +185,9 @@ def cone_measures(pose: LightPose, boxes: np.ndarray) -> ConeMeasures:
     >>> cone_measures(pose, boxes).spread.tolist()
     [0.5, inf]
     """
-    near, far = box_distances_squared(pose.position, boxes)
-    x, y, z = box_corners_along(boxes, pose.position, _spot_rotation(pose)[:3, :3])
+    offsets = box_offsets(boxes, pose.position)
+    near, far = _distances_squared(offsets)
+    x, y, z = box_corners_along(offsets, _spot_rotation(pose)[:3, :3])
     depth = np.negative(z)
     in_front = depth.min(axis=0) > 0.0
     # a box with a corner beside or behind the light spreads without bound: divided by 1
@@ -300,7 +306,7 @@ class SunFit:
 
 
 def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    rotated = box_corners_along(boxes, np.zeros(3), rotation[:3, :3])
+    rotated = box_corners_along(box_offsets(boxes, np.zeros(3)), rotation[:3, :3])
     return np.stack([rotated.min(axis=1).T, rotated.max(axis=1).T], axis=1)
 
 
