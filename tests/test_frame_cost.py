@@ -190,6 +190,27 @@ def test_raw_vtk_edits_below_the_dataset_are_noticed(edit):
         assert now.bounds[1, 2] == pytest.approx(state.bounds[1, 2] + 3.0)
 
 
+def test_receivers_never_drawn_are_tried_for_a_watch_only_where_the_view_meets_them():
+    pl, _ = crowd()
+    edits = pl.shadows._renderers[0]._edits
+    draw(pl)  # VTK has drawn the receivers in view once: their programs are watched
+    waiting = set(edits.waiting)
+    # Most of the 200 spheres lie outside the view: VTK never drew them, so they
+    # have no OpenGL mapper to watch yet.
+    assert 100 < len(waiting) < 201
+    before = edits.waiting.tries
+    for _ in range(3):
+        pl.camera.Azimuth(0.2)
+        draw(pl)
+    assert edits.waiting.tries == before  # none of them is in view: none is tried
+    assert set(edits.waiting) == waiting
+    pl.reset_camera()  # every receiver in view
+    draw(pl)
+    draw(pl)
+    assert not edits.waiting
+    assert all(edits.of(key).check.checked for key in waiting)
+
+
 def test_disabling_removes_every_observer_from_the_actors():
     pl, _ = crowd()
     state = pl.shadows._renderers[0].snapshot.casters[1]
@@ -340,6 +361,7 @@ def _derived(snapshot):
         "caster_flat": snapshot.caster_flat.tolist(),
         "caster_triangles": snapshot.caster_triangles.tolist(),
         "rows": snapshot.caster_rows(snapshot.casters[::-1]).tolist(),
+        "boxes": [snapshot.receivers_box.tolist(), snapshot.casters_box.tolist()],
     }
 
 
@@ -367,6 +389,65 @@ def test_a_snapshot_after_moved_actors_follows_the_last_and_derives_what_a_fresh
     moved[0].AddPosition(0.1, 0.0, 0.0)
     draw(pl)
     assert shadows.snapshot.parent is following and following.parent is None
+
+
+def test_a_flat_receivers_span_after_moved_actors_is_patched_to_what_every_corner_gives():
+    """Moving receivers measures again their heights over a ground that stayed: the
+    same span as measuring every receiver afresh, and as every box corner gives."""
+    import numpy as np
+
+    from pvshadows.scene.culling import box_corners
+    from pvshadows.scene.snapshot import Snapshot
+
+    pl, _ = crowd()
+    shadows = pl.shadows._renderers[0]
+    first = shadows.snapshot
+    ground = next(s for s in first.actors if s.sheet is not None)
+    first.sheet_span(ground)
+    for row, lift in ((3, 2.5), (150, -1.75)):
+        first.casters[row].actor.AddPosition(0.3, -0.2, lift)
+    draw(pl)
+    following = shadows.snapshot
+    assert following.parent is first and ground in following.actors
+    patched = following.sheet_span(ground)
+    fresh = Snapshot(list(following.actors), following.bystanders).sheet_span(ground)
+    assert patched == fresh != first.sheet_span(ground)
+    others = [s.bounds for s in following.receivers if s is not ground]
+    heights = box_corners(np.array(others)).reshape(-1, 3) @ ground.sheet.normal
+    offset = ground.sheet.anchor @ ground.sheet.normal
+    assert np.allclose(patched, (heights.min() - offset, heights.max() - offset), atol=1e-12)
+
+
+def test_the_boxes_round_every_actor_widen_over_moved_actors_that_held_none_of_their_faces(
+    monkeypatch,
+):
+    import pvshadows.scene.snapshot as snapshot_module
+    from pvshadows.scene.snapshot import Snapshot
+
+    pl, _ = crowd()
+    shadows = pl.shadows._renderers[0]
+    top, inner = shadows.snapshot.casters[3].actor, shadows.snapshot.casters[150].actor
+    top.AddPosition(0.0, 0.0, 2.5)  # now the highest: it holds the boxes' top face
+    inner.AddPosition(0.0, 0.0, 0.5)  # off the ground: it holds no face of either box
+    draw(pl)
+    before = shadows.snapshot
+    _ = before.receivers_box, before.casters_box  # derived, as a frame does
+    rounds = []
+    measured = snapshot_module.box_around
+    monkeypatch.setattr(snapshot_module, "box_around", lambda b: rounds.append(1) or measured(b))
+    inner.AddPosition(0.3, -0.2, 1.5)  # rises above every other sphere, under the top one
+    draw(pl)
+    following = shadows.snapshot
+    assert following.parent is before and following.replaced
+    boxes = [following.receivers_box.tolist(), following.casters_box.tolist()]
+    assert rounds == []  # widened from last frame's boxes, no walk over every actor
+    fresh = Snapshot(list(following.actors), following.bystanders)
+    assert boxes == [fresh.receivers_box.tolist(), fresh.casters_box.tolist()]
+    top.AddPosition(0.0, 0.0, -2.5)  # the face-holder moves: the boxes are found afresh
+    draw(pl)
+    latest = shadows.snapshot
+    assert latest.casters_box.tolist() == measured(latest.caster_bounds).tolist()
+    assert rounds
 
 
 def test_an_actor_that_changes_role_gives_a_fresh_snapshot():

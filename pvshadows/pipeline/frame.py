@@ -14,6 +14,8 @@ import warnings
 from collections.abc import Callable
 from pathlib import Path
 
+import numpy as np
+
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.buffers import forget_pointer_records
@@ -204,7 +206,7 @@ class RendererShadows:
         lookups = [lookup for shading in shadings for lookup in shading.needs]
         entries = take_light_entries(strengths, lookups, uniforms)
         self._block.update(entries, self.probe_index, self._viewport(context, plans))
-        self._apply_edits(snapshot, shadings, uniforms, light_space)
+        self._apply_edits(snapshot, shadings, uniforms, light_space, view.planes)
         assert self._units is not None  # made by _start_gl
         self._units.bind(uniforms)
         park_active_unit(self._window)
@@ -287,7 +289,12 @@ class RendererShadows:
         return troubles
 
     def _apply_edits(
-        self, snapshot: Snapshot, shadings: list, uniforms: dict, light_space: list
+        self,
+        snapshot: Snapshot,
+        shadings: list,
+        uniforms: dict,
+        light_space: list,
+        planes: np.ndarray,
     ) -> None:
         lit_points = {
             vtk_id(actor)
@@ -296,7 +303,7 @@ class RendererShadows:
             and self._reader.receiving.get(vtk_id(actor), True)
             and lit_without_triangles(actor)
         }
-        self._edits.update(snapshot, shadings, uniforms, light_space, lit_points)
+        self._edits.update(snapshot, shadings, uniforms, light_space, lit_points, planes)
 
     def _on_end(self, renderer: vtk.vtkRenderer, event: str) -> None:
         if self.error is not None:

@@ -24,7 +24,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
-from pvshadows.scene.culling import box_around, box_corners
+from pvshadows.scene.culling import box_around
 from pvshadows.scene.translucency import transmittance
 from pvshadows.scene.triangles import (
     ActorTriangles,
@@ -340,7 +340,8 @@ class Snapshot:
         """Return how far the other receivers reach on either side of a flat actor's plane.
 
         Found once per snapshot and flat actor, and shared by every light
-        that asks whether the actor shadows anything.
+        that asks whether the actor shadows anything; a snapshot that
+        follows another measures again only the receivers replaced since.
 
         Parameters
         ----------
@@ -358,16 +359,9 @@ class Snapshot:
         if span is None:
             sheet = state.sheet
             assert sheet is not None  # asked of flat actors only
-            heights = (self._receiver_corners @ sheet.normal).reshape(len(self.receivers), 8)
-            row = self._receiver_rows.get(id(state))
-            if row is not None:
-                heights = np.delete(heights, row, axis=0)
+            low, high = self._sheet_heights(state, sheet)
             offset = float(sheet.anchor @ sheet.normal)
-            span = (
-                (float(heights.min()) - offset, float(heights.max()) - offset)
-                if heights.size
-                else _NO_SPAN
-            )
+            span = (float(low.min()) - offset, float(high.max()) - offset) if low.size else _NO_SPAN
             self._sheet_spans[id(state)] = span
         return span
 
@@ -376,15 +370,40 @@ class Snapshot:
         return {}
 
     @cached_property
-    def _receiver_corners(self) -> np.ndarray:
-        """The eight corners of each receiver's bounds, ``(n * 8, 3)``, patched like the bounds."""
-        kept = self._inherited("_receiver_corners")
-        if kept is None:
-            return box_corners(self.receiver_bounds).reshape(-1, 3)
-        corners = kept.copy()  # type: ignore[attr-defined]
-        for row, state in self.patches(RECEIVERS):
-            corners[8 * row : 8 * row + 8] = box_corners(state.bounds[None])[0]
-        return corners
+    def _heights_by_sheet(self) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+        return {}
+
+    def _sheet_heights(self, state: ActorState, sheet: Sheet) -> tuple[np.ndarray, np.ndarray]:
+        """Each receiver's lowest and highest corner along a flat actor's normal.
+
+        The flat actor's own row, when it receives, is left out (``inf`` and
+        ``-inf``). An unchanged flat actor takes the parent's heights,
+        patched in the rows of the receivers replaced since.
+        """
+        heights = self._heights_by_sheet.get(id(state))
+        if heights is not None:
+            return heights
+        # A box's corner lowest along the normal takes the box's maximum where the
+        # normal is negative and its minimum where it is positive.
+        up, down = np.maximum(sheet.normal, 0.0), np.minimum(sheet.normal, 0.0)
+        parent = self.parent
+        kept = None if parent is None else parent.__dict__.get("_heights_by_sheet", {})
+        kept_heights = None if kept is None else kept.get(id(state))
+        if kept_heights is None:
+            bounds = self.receiver_bounds
+            low = bounds[:, 0] @ up + bounds[:, 1] @ down
+            high = bounds[:, 1] @ up + bounds[:, 0] @ down
+            row = self._receiver_rows.get(id(state))
+            if row is not None:
+                low[row], high[row] = np.inf, -np.inf
+        else:
+            low, high = kept_heights[0].copy(), kept_heights[1].copy()
+            for row, receiver in self.patches(RECEIVERS):
+                bottom, top = receiver.bounds
+                low[row] = bottom @ up + top @ down
+                high[row] = top @ up + bottom @ down
+        heights = self._heights_by_sheet[id(state)] = (low, high)
+        return heights
 
     def keys_of(self, casters: list[ActorState]) -> tuple:
         """Return :meth:`ActorState.key` of some of this snapshot's casters, as one tuple.
@@ -422,12 +441,33 @@ class Snapshot:
     @cached_property
     def receivers_box(self) -> np.ndarray:
         """World bounds of all :attr:`receivers` together, ``(2, 3)`` (NaN when there are none)."""
-        return box_around(self.receiver_bounds)
+        return self._box_round("receivers_box", "receiver_bounds", RECEIVERS)
 
     @cached_property
     def casters_box(self) -> np.ndarray:
         """World bounds of all :attr:`casters` together, ``(2, 3)`` (NaN when there are none)."""
-        return box_around(self.caster_bounds)
+        return self._box_round("casters_box", "caster_bounds", CASTERS)
+
+    def _box_round(self, name: str, bounds_name: str, role: int) -> np.ndarray:
+        """Return the box round a role's bounds, widening the parent's where it can.
+
+        When none of the replaced actors' old bounds reached a face of the
+        parent's box, the others still hold it exactly where it was: it only
+        widens to take in their new bounds (min and max are exact, so this is
+        the box found afresh, bit for bit).
+        """
+        bounds = getattr(self, bounds_name)
+        kept, before = self._inherited(name), self._inherited(bounds_name)
+        rows = [row for row, _ in self.patches(role)]
+        if not (isinstance(kept, np.ndarray) and isinstance(before, np.ndarray) and rows):
+            return box_around(bounds)
+        old = before[rows]
+        if (old[:, 0] <= kept[0]).any() or (old[:, 1] >= kept[1]).any():
+            return box_around(bounds)
+        new = bounds[rows]
+        return np.array(
+            [np.minimum(kept[0], new[:, 0].min(axis=0)), np.maximum(kept[1], new[:, 1].max(axis=0))]
+        )
 
     @cached_property
     def caster_models(self) -> np.ndarray:

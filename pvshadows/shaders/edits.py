@@ -31,6 +31,7 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.gl.sampler_units import SamplerUnits
 from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.shaders.landing import WaitingChecks
 from pvshadows.shaders.shading import (
     LightShading,
     ShaderEdits,
@@ -111,7 +112,7 @@ class ReceiverEdits:
         self._lit_points: set[str] = set()
         self._flagged: set[str] = set()
         #: Receivers whose programs cannot be watched yet (no OpenGL mapper before a first draw).
-        self._unwatched: set[str] = set()
+        self.waiting = WaitingChecks()
         #: The lights' uniform values of the last frame (nothing to send when they are the same).
         self._given: dict[str, object] = {}
         self._problems: dict[str, str] = {}
@@ -130,6 +131,7 @@ class ReceiverEdits:
         uniforms: dict[str, object],
         light_space: list[LightShading] | None = None,
         lit_points: set[str] | None = None,
+        planes: np.ndarray | None = None,
     ) -> None:
         """Bring every actor's edits and uniforms to this frame's.
 
@@ -150,11 +152,14 @@ class ReceiverEdits:
         lit_points : set of str, optional
             Keys of the bystanders VTK lights without triangles (points as
             spheres, lines as tubes): they receive ``light_space``.
+        planes : numpy.ndarray, optional
+            ``(6, 4)`` the view's frustum planes: a receiver whose program is
+            not watched yet is tried again only where the view meets it
+            (every frame when not given).
         """
         light_space = light_space or []
         lit_points = lit_points or set()
-        if self._unwatched:
-            self._unwatched = {k for k in self._unwatched if not self._edits[k].check.attach()}
+        self.waiting.try_in_view(planes)
         flagged, self._flagged = self._flagged, set()
         same = (
             snapshot is self._snapshot
@@ -283,7 +288,8 @@ class ReceiverEdits:
                 packed = receiver_uniforms(lights, uniforms)
             edits.apply(self._replacements_for(actor, signature, lights, packed))
             if not edits.check.attach():
-                self._unwatched.add(key)
+                bounds = state.bounds if isinstance(state, ActorState) else None
+                self.waiting.wait(key, edits.check, bounds)
             self.edited += 1
             self._note_problem(key)
         previous = self._sent.get(signature) if self._signature_of.get(key) == signature else None
@@ -322,6 +328,8 @@ class ReceiverEdits:
             changed = [n for n, v in values.items() if not _same(previous[n], v)]
         else:
             changed = list(values)
+        if not changed:  # the common case (an actor moved): no walk over every receiver
+            return values
         setters = [uniform_setter(name, values[name]) for name in changed]
         for target in targets:
             for setter in setters:
@@ -404,7 +412,7 @@ class ReceiverEdits:
         return {key: (self._edits[key].actor, why) for key, why in self._problems.items()}
 
     def _forget(self, key: str) -> None:
-        self._unwatched.discard(key)
+        self.waiting.forget(key)
         self._problems.pop(key, None)
         self._signature_of.pop(key, None)
         self._uniforms.pop(key, None)

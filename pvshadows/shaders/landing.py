@@ -19,11 +19,13 @@ can be left exactly as VTK built it.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 
+import numpy as np
 from vtkmodules.util.misc import calldata_type
 
 from pvshadows import _vtk as vtk
+from pvshadows.scene.culling import boxes_in_frustum
 
 #: VTK's replacement tags: the shader cache substitutes or keeps them, so they
 #: are not looked for.
@@ -228,3 +230,124 @@ class LandingCheck:
                     self._mapper.RemoveObserver(tag)
         self._mapper = None
         self._error_tag = self._program_tag = None
+
+
+class WaitingChecks:
+    """Landing checks of receivers that VTK has not drawn yet, tried where the view meets them.
+
+    VTK makes a receiver's OpenGL mapper when it first draws it, so a
+    receiver edited before then has no program to watch. VTK draws only what
+    the view's frustum meets: a receiver is tried again only once the view
+    meets its bounds, all found in one test over the waiting receivers'
+    bounds (stacked once while the same receivers wait), and not at all
+    while the view and the waiting receivers stay as they were when none
+    was in view. So a frame costs the waiting receivers in view, not every
+    receiver never drawn (a zoomed-in view of a large assembly leaves most
+    of it undrawn for as long as it stays so).
+
+    Attributes
+    ----------
+    tries : int
+        Checks tried since this object was made.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pyvista as pv
+    >>> import vtk
+    >>> from pvshadows.scene.culling import frustum_planes
+    >>> from pvshadows.shaders.landing import LandingCheck, WaitingChecks
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> actor = pl.add_mesh(pv.Sphere())
+    >>> waiting = WaitingChecks()
+    >>> waiting.wait("sphere", LandingCheck(actor), np.array([[-0.5, -0.5, -0.5], [0.5, 0.5, 0.5]]))
+    >>> camera = vtk.vtkCamera()  # at z = 1, looking down -z: it sees the sphere
+    >>> view = frustum_planes(camera, 1.0)
+    >>> camera.SetFocalPoint(0.0, 0.0, 2.0)  # looking up +z: it does not
+    >>> away = frustum_planes(camera, 1.0)
+    >>> waiting.try_in_view(away)
+    >>> waiting.tries, len(waiting)
+    (0, 1)
+    >>> waiting.try_in_view(view)  # in view, but VTK has not drawn it yet
+    >>> waiting.tries, len(waiting)
+    (1, 1)
+    >>> pl.ren_win.Render()
+    >>> waiting.try_in_view(view)
+    >>> waiting.tries, len(waiting)
+    (2, 0)
+    """
+
+    def __init__(self) -> None:
+        self._waiting: dict[str, tuple[LandingCheck, np.ndarray | None]] = {}
+        #: The waiting keys without bounds, those with, their rows and their bounds stacked.
+        self._stack: tuple[list[str], list[str], dict[str, int], np.ndarray] | None = None
+        #: The planes of the last try, when none of the waiting receivers was in view.
+        self._quiet_view: np.ndarray | None = None
+        self.tries = 0
+
+    def __len__(self) -> int:
+        return len(self._waiting)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._waiting)
+
+    def wait(self, key: str, check: LandingCheck, bounds: np.ndarray | None) -> None:
+        """Keep a receiver's check until its mapper exists.
+
+        Parameters
+        ----------
+        key : str
+            The receiver's key.
+        check : LandingCheck
+            Its check, whose :meth:`LandingCheck.attach` found no mapper.
+        bounds : numpy.ndarray or None
+            ``(2, 3)`` its world bounds; ``None`` for one tried every frame.
+        """
+        kept = self._waiting.get(key)
+        self._waiting[key] = (check, bounds)
+        self._quiet_view = None
+        stack = self._stack
+        if stack is None or kept is None or (kept[1] is None) != (bounds is None):
+            self._stack = None
+        elif bounds is not None:
+            stack[3][stack[2][key]] = bounds
+
+    def forget(self, key: str) -> None:
+        """Stop waiting for a receiver.
+
+        Parameters
+        ----------
+        key : str
+            The receiver's key.
+        """
+        if self._waiting.pop(key, None) is not None:
+            self._stack = None
+
+    def try_in_view(self, planes: np.ndarray | None) -> None:
+        """Attach the checks of the waiting receivers VTK may have drawn since.
+
+        Parameters
+        ----------
+        planes : numpy.ndarray or None
+            ``(6, 4)`` the view's frustum planes; ``None`` tries every one.
+        """
+        if not self._waiting or (planes is not None and planes is self._quiet_view):
+            return
+        if self._stack is None:
+            unboxed = [key for key, (_, bounds) in self._waiting.items() if bounds is None]
+            keys = [key for key, (_, bounds) in self._waiting.items() if bounds is not None]
+            stacked = np.array([self._waiting[key][1] for key in keys]).reshape(-1, 2, 3)
+            self._stack = (unboxed, keys, {key: row for row, key in enumerate(keys)}, stacked)
+        unboxed, keys, _, stacked = self._stack
+        if planes is None:
+            tried = unboxed + keys
+        else:
+            seen = np.flatnonzero(boxes_in_frustum(stacked, planes)).tolist()
+            tried = unboxed + [keys[row] for row in seen]
+        self.tries += len(tried)
+        attached = [key for key in tried if self._waiting[key][0].attach()]
+        for key in attached:
+            del self._waiting[key]
+        if attached:
+            self._stack = None
+        self._quiet_view = planes if not tried else None
