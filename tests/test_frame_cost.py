@@ -418,7 +418,7 @@ def test_a_flat_receivers_span_after_moved_actors_is_patched_to_what_every_corne
     assert np.allclose(patched, (heights.min() - offset, heights.max() - offset), atol=1e-12)
 
 
-def test_the_boxes_round_every_actor_widen_over_moved_actors_that_held_none_of_their_faces(
+def test_the_boxes_round_every_actor_widen_over_moved_actors_unless_one_left_a_face(
     monkeypatch,
 ):
     import pvshadows.scene.snapshot as snapshot_module
@@ -443,10 +443,15 @@ def test_the_boxes_round_every_actor_widen_over_moved_actors_that_held_none_of_t
     assert rounds == []  # widened from last frame's boxes, no walk over every actor
     fresh = Snapshot(list(following.actors), following.bystanders)
     assert boxes == [fresh.receivers_box.tolist(), fresh.casters_box.tolist()]
-    top.AddPosition(0.0, 0.0, -2.5)  # the face-holder moves: the boxes are found afresh
+    rounds.clear()  # (the fresh snapshot's)
+    top.AddPosition(0.1, 0.0, 0.0)  # it keeps the top face it holds: widened again
+    draw(pl)
+    assert rounds == []
+    top.AddPosition(0.0, 0.0, -2.5)  # it leaves the top face: the boxes are found afresh
     draw(pl)
     latest = shadows.snapshot
     assert latest.casters_box.tolist() == measured(latest.caster_bounds).tolist()
+    assert latest.receivers_box.tolist() == measured(latest.receiver_bounds).tolist()
     assert rounds
 
 

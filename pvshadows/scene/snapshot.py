@@ -451,23 +451,28 @@ class Snapshot:
     def _box_round(self, name: str, bounds_name: str, role: int) -> np.ndarray:
         """Return the box round a role's bounds, widening the parent's where it can.
 
-        When none of the replaced actors' old bounds reached a face of the
-        parent's box, the others still hold it exactly where it was: it only
-        widens to take in their new bounds (min and max are exact, so this is
-        the box found afresh, bit for bit).
+        The parent's box stays exact unless a replaced actor's old bounds
+        held one of its faces and its new bounds no longer reach it: then the
+        box is found afresh. Otherwise it only widens to take in the new
+        bounds (min and max are exact: the box found afresh, bit for bit), a
+        few plain floats per moved actor instead of a pass over every actor.
         """
         bounds = getattr(self, bounds_name)
         kept, before = self._inherited(name), self._inherited(bounds_name)
         rows = [row for row, _ in self.patches(role)]
         if not (isinstance(kept, np.ndarray) and isinstance(before, np.ndarray) and rows):
             return box_around(bounds)
-        old = before[rows]
-        if (old[:, 0] <= kept[0]).any() or (old[:, 1] >= kept[1]).any():
-            return box_around(bounds)
-        new = bounds[rows]
-        return np.array(
-            [np.minimum(kept[0], new[:, 0].min(axis=0)), np.maximum(kept[1], new[:, 1].max(axis=0))]
-        )
+        (low, high), olds, news = kept.tolist(), before[rows].tolist(), bounds[rows].tolist()
+        for (old_low, old_high), (new_low, new_high) in zip(olds, news, strict=True):
+            for axis in range(3):
+                if old_low[axis] <= low[axis] < new_low[axis]:
+                    return box_around(bounds)  # it held a face it has left
+                if new_high[axis] < high[axis] <= old_high[axis]:
+                    return box_around(bounds)
+        for new_low, new_high in news:
+            low = [min(a, b) for a, b in zip(low, new_low, strict=True)]
+            high = [max(a, b) for a, b in zip(high, new_high, strict=True)]
+        return np.array([low, high])
 
     @cached_property
     def caster_models(self) -> np.ndarray:
