@@ -64,6 +64,28 @@ def test_one_box_tested_alone_gets_the_answer_it_gets_among_many(seed):
     assert 0 < inside < 40 * 100
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_one_box_measured_alone_from_a_spot_gets_the_bits_it_gets_among_many(seed):
+    """A moved caster is measured alone in plain floats: the same distances and spread,
+    to the last bit, as numpy's among many, at every scale, beside and behind the light."""
+    from pvshadows.scene.fitting import cone_measures
+
+    rng = np.random.default_rng(seed)
+    unbounded = 0
+    for trial in range(60):
+        scale = 10.0 ** rng.uniform(-6, 9)
+        pose = _random_pose(rng)
+        pose = LightPose(LightKind.SPOT, pose.position * scale, pose.direction, pose.cone_angle)
+        centres = pose.position + rng.normal(size=(50, 3)) * 4 * scale
+        halves = rng.uniform(0.01, 1.5, (50, 3)) * scale
+        boxes = np.stack([centres - halves, centres + halves], axis=1)
+        together = np.array(cone_measures(pose, boxes))
+        alone = np.concatenate([np.array(cone_measures(pose, box[None])) for box in boxes], axis=1)
+        assert alone.tobytes() == together.tobytes(), trial
+        unbounded += int(np.isinf(together[2]).sum())
+    assert 0 < unbounded < 60 * 50  # boxes beside or behind the light were drawn too
+
+
 def _faces_by_plane(box: np.ndarray) -> int:
     """A cube face's pyramid against a box, plane by plane: its forward plane and four sides."""
     from pvshadows.geometry.transforms import CUBE_FACE_AXES
