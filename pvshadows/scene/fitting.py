@@ -156,17 +156,17 @@ def _one_box_cone_measures(box: np.ndarray, pose: LightPose) -> tuple[float, flo
     corner = [max(abs(a), abs(b)) for a, b in zip(low, high, strict=True)]
     near = (outside[0] * outside[0] + outside[2] * outside[2]) + outside[1] * outside[1]
     far = (corner[0] * corner[0] + corner[2] * corner[2]) + corner[1] * corner[1]
-    # terms[k][axis]: rotated coordinate k of the min and max corners' offsets along an axis
-    terms = [
+    # The terms of each rotated coordinate: along each axis, from the min and max corners.
+    (x0, x1, x2), (y0, y1, y2), (z0, z1, z2) = (
         [(row[axis] * low[axis], row[axis] * high[axis]) for axis in range(3)]
         for row in _spot_rotation(pose)[:3, :3].tolist()
-    ]
+    )
     spread = -math.inf
     for i, j, k in _CORNER_SIDES:
-        x, y, z = ((along[0][i] + along[1][j]) + along[2][k] for along in terms)
-        depth = -z
+        depth = -((z0[i] + z1[j]) + z2[k])
         if not depth > 0.0:  # a corner beside or behind the light: no bound
             return near, far, math.inf
+        x, y = (x0[i] + x1[j]) + x2[k], (y0[i] + y1[j]) + y2[k]
         spread = max(spread, max(abs(x), abs(y)) / depth)
     return near, far, spread
 
