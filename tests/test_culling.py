@@ -86,6 +86,29 @@ def test_one_box_measured_alone_from_a_spot_gets_the_bits_it_gets_among_many(see
     assert 0 < unbounded < 60 * 50  # boxes beside or behind the light were drawn too
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_one_box_measured_alone_from_a_point_light_gets_the_bits_it_gets_among_many(seed):
+    """A moved caster is measured alone in plain floats for a cube: the same distances and
+    faces, to the last bit, as numpy's among many, at every scale, around the light too."""
+    from pvshadows.techniques.cubemap import cube_measures
+
+    rng = np.random.default_rng(seed)
+    holding = 0
+    for trial in range(60):
+        scale = 10.0 ** rng.uniform(-6, 9)
+        pose = LightPose(LightKind.POINT, rng.normal(size=3) * scale, np.array([0, 0, -1.0]), 180)
+        centres = pose.position + rng.normal(size=(50, 3)) * 3 * scale
+        halves = rng.uniform(0.01, 2.0, (50, 3)) * scale
+        boxes = np.stack([centres - halves, centres + halves], axis=1)
+        together = [np.asarray(column) for column in cube_measures(pose, boxes)]
+        alone = [cube_measures(pose, box[None]) for box in boxes]
+        for column, values in enumerate(together):
+            single = np.concatenate([np.asarray(measures[column]) for measures in alone])
+            assert single.dtype == values.dtype and single.tobytes() == values.tobytes(), trial
+        holding += int((together[2] == 63).sum())
+    assert 0 < holding < 60 * 50  # boxes around the light (every face) were drawn too
+
+
 def _faces_by_plane(box: np.ndarray) -> int:
     """A cube face's pyramid against a box, plane by plane: its forward plane and four sides."""
     from pvshadows.geometry.transforms import CUBE_FACE_AXES
