@@ -421,6 +421,7 @@ class ShadowsComponent:
                     replace(light, subplot=self._subplot(number)) if several else light
                 )
             report.receivers.extend(renderer.last_frame.receivers)
+            report.cpu_ms += renderer.last_frame.cpu_ms
         return report
 
     def visibility(self, light: vtk.vtkLight | None = None, *, scale: int = 1) -> np.ndarray:

@@ -614,3 +614,26 @@ def test_a_redrawn_map_reuses_its_framebuffer_as_attached(light, monkeypatch):
         assert pl.shadows.last_frame.passes_run == 1
         assert pl.shadows.measure(scene.light).misclassified <= 0.01
     assert checks == []
+
+
+def test_a_frame_says_the_cpu_time_of_pvshadows_own_code_the_passes_within_it():
+    """``last_frame.cpu_ms`` holds pvshadows' own work on both sides of VTK's draw, the
+    passes' issuing among it; with subplots, every renderer's."""
+    pl = pv.Plotter(off_screen=True, shape=(1, 2), window_size=(320, 160), lighting="none")
+    lights = []
+    for column in range(2):
+        pl.subplot(0, column)
+        pl.add_mesh(pv.Plane(i_size=6, j_size=6), color="white")
+        pl.add_mesh(pv.Sphere(center=(0, 0, 1)), color="tan")
+        lights.append(pv.Light(position=(1, 1, 5), positional=True, cone_angle=180))
+        pl.add_light(lights[-1], only_active=True)
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    lights[0].position = (1.2, 1, 5)  # the left subplot's cube is drawn again
+    pl.render()
+    frame = pl.shadows.last_frame
+    own = [renderer.last_frame.cpu_ms for renderer in pl.shadows._renderers]
+    assert frame.passes_run == 1
+    assert frame.cpu_ms == sum(own)
+    assert own[0] > frame.pass_cpu_ms > 0.0  # the pass is part of the left one's frame
+    assert own[1] > 0.0  # nothing to draw on the right, but the frame was still read

@@ -145,6 +145,12 @@ class FrameReport:
     receivers : list of str
         Receivers that show fewer shadows than asked, each with why (its
         shader variant refused pvshadows' edits, or they did not land).
+    cpu_ms : float
+        CPU milliseconds pvshadows spent on the frame in its own code, on
+        the thread drawing it: before VTK drew (reading the scene, planning,
+        drawing maps, editing receivers) and after (collecting timings).
+        :attr:`pass_cpu_ms` is part of it; VTK's own work for the
+        receivers is not.
 
     Examples
     --------
@@ -161,6 +167,7 @@ class FrameReport:
     frame: int = 0
     failure: FrameFailure | None = None
     receivers: list[str] = field(default_factory=list)
+    cpu_ms: float = 0.0
 
     @property
     def gpu_ready(self) -> bool:

@@ -9,6 +9,7 @@ times into :attr:`RendererShadows.last_frame`.
 
 from __future__ import annotations
 
+import time
 import traceback
 import warnings
 from collections.abc import Callable
@@ -128,6 +129,7 @@ class RendererShadows:
         return volume.can_extrude_on_gpu()
 
     def _on_start(self, renderer: vtk.vtkRenderer, event: str) -> None:
+        started = time.thread_time()
         self._frame += 1
         self._where = "reading the scene"
         self._building = FrameReport(frame=self._frame)
@@ -136,6 +138,7 @@ class RendererShadows:
             self.error = None
         except Exception as error:
             self._fail(error)
+        self._building.cpu_ms = (time.thread_time() - started) * 1e3
 
     def _run_frame(self) -> None:
         self._start_gl()
@@ -308,10 +311,12 @@ class RendererShadows:
     def _on_end(self, renderer: vtk.vtkRenderer, event: str) -> None:
         if self.error is not None:
             return
+        started = time.thread_time()
         try:
             self._finish_frame()
         except Exception as error:
             self._fail(error)
+        self.last_frame.cpu_ms += (time.thread_time() - started) * 1e3
 
     def _finish_frame(self) -> None:
         if self.show_debug and self.probe_index < 0 and self._context is not None:
