@@ -184,7 +184,7 @@ def boxes_from_origin(boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
     nearer = np.minimum(reach[:, :3], reach[:, 3:])
     outside = np.minimum(nearer, 0.0)
     farther = np.maximum.reduce(np.abs(reach).reshape(-1, 2, 3), axis=1)
-    near, far = _squared_rows(outside), _squared_rows(farther)
+    near, far = squared_lengths(outside.T), squared_lengths(farther.T)
     # A face's four side planes each weigh its axis and one other: a box is inside them
     # when it reaches ahead along the face's axis at least as far as it lies outside the
     # slab of either other axis.
@@ -192,13 +192,55 @@ def boxes_from_origin(boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
     return near, far, (reach[:, _FACE_REACH] >= beside) @ _FACE_BITS
 
 
-def _squared_rows(rows: np.ndarray) -> np.ndarray:
-    """Return each row's squared length, ``(n, 3)`` to ``(n,)``: x's and z's, then y's.
+def squared_lengths(rows: np.ndarray) -> np.ndarray:
+    """Return the squared length of each column of a ``(3, n)`` array.
 
-    The order is written out (it is the order numpy's ``einsum`` takes), so
-    that :func:`box_from_origin` gets the same bits for one box.
+    numpy's norm without its checks. The sum is written out, x's and z's,
+    then y's (the order numpy's ``einsum`` sums a row of three), so that
+    :func:`squared_length` gives the same bits for one vector.
+
+    Parameters
+    ----------
+    rows : numpy.ndarray
+        ``(3, n)`` one coordinate per row (a transposed ``(n, 3)`` serves).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n,)`` the sums of the squares.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.geometry.transforms import squared_lengths
+    >>> squared_lengths(np.array([[3.0, 1], [4, 1], [0, 1]])).tolist()
+    [25.0, 3.0]
     """
-    return (rows[:, 0] * rows[:, 0] + rows[:, 2] * rows[:, 2]) + rows[:, 1] * rows[:, 1]
+    x, y, z = rows
+    return (x * x + z * z) + y * y
+
+
+def squared_length(vector: list[float]) -> float:
+    """Return one vector's squared length in plain floats, as :func:`squared_lengths` sums it.
+
+    Parameters
+    ----------
+    vector : list of float
+        Three coordinates.
+
+    Returns
+    -------
+    float
+        The sum of their squares, to the same bits as :func:`squared_lengths`.
+
+    Examples
+    --------
+    >>> from pvshadows.geometry.transforms import squared_length
+    >>> squared_length([3.0, 4.0, 0.0])
+    25.0
+    """
+    x, y, z = vector
+    return (x * x + z * z) + y * y
 
 
 def box_from_origin(low: list[float], high: list[float]) -> tuple[float, float, int]:
@@ -227,13 +269,11 @@ def box_from_origin(low: list[float], high: list[float]) -> tuple[float, float, 
     nearer = [min(reach[axis], reach[axis + 3]) for axis in range(3)]
     outside = [min(a, 0.0) for a in nearer]
     farther = [max(abs(reach[axis]), abs(reach[axis + 3])) for axis in range(3)]
-    near = (outside[0] * outside[0] + outside[2] * outside[2]) + outside[1] * outside[1]
-    far = (farther[0] * farther[0] + farther[2] * farther[2]) + farther[1] * farther[1]
     faces = 0
     for face, (ahead, (one, other)) in enumerate(_FACE_SIDES):
         if reach[ahead] >= max(-min(nearer[one], nearer[other]), 0.0):
             faces |= 1 << face
-    return near, far, faces
+    return squared_length(outside), squared_length(farther), faces
 
 
 def faces_touching_boxes(boxes: np.ndarray) -> np.ndarray:

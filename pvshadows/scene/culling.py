@@ -8,6 +8,7 @@ from functools import lru_cache
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.transforms import squared_lengths
 from pvshadows.scene.lights import LightPose
 
 
@@ -193,7 +194,8 @@ def box_around(boxes: np.ndarray) -> np.ndarray:
 
 
 #: Which of the min (0) or max (1) corner each coordinate of a box's eight corners takes.
-_CORNERS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=bool)
+CORNER_SIDES = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+_CORNERS = np.array(CORNER_SIDES, dtype=bool)
 
 
 def box_corners(boxes: np.ndarray) -> np.ndarray:
@@ -354,34 +356,6 @@ def _one_box_in_spot(lo: list[float], hi: list[float], pose: LightPose) -> bool:
     across = math.hypot(*(c - along * d for c, d in zip(center, direction, strict=True)))
     angle = math.radians(min(pose.cone_angle, 89.9))
     return across * math.cos(angle) - along * math.sin(angle) <= radius
-
-
-def squared_lengths(rows: np.ndarray) -> np.ndarray:
-    """Return the squared length of each column of a ``(3, n)`` array.
-
-    numpy's norm without its checks, for :func:`box_offsets`' rows.
-
-    Parameters
-    ----------
-    rows : numpy.ndarray
-        ``(3, n)`` one coordinate per row.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``(n,)`` the sums of the squares: x's and z's, then y's.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from pvshadows.scene.culling import squared_lengths
-    >>> squared_lengths(np.array([[3.0, 1], [4, 1], [0, 1]])).tolist()
-    [25.0, 3.0]
-    """
-    x, y, z = rows
-    # x and z first, then y: the order numpy's einsum sums a row of three, so that a
-    # length is the same to the last bit as einsum's over an (n, 3) array
-    return (x * x + z * z) + y * y
 
 
 def boxes_in_spot(boxes: np.ndarray, pose: LightPose) -> np.ndarray:

@@ -16,8 +16,14 @@ from typing import NamedTuple
 
 import numpy as np
 
-from pvshadows.geometry.transforms import look_rotation, perspective, translation
-from pvshadows.scene.culling import box_corners_along, box_offsets, squared_lengths
+from pvshadows.geometry.transforms import (
+    look_rotation,
+    perspective,
+    squared_length,
+    squared_lengths,
+    translation,
+)
+from pvshadows.scene.culling import CORNER_SIDES, box_corners_along, box_offsets
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import ActorState, Snapshot
 
@@ -145,8 +151,9 @@ def _one_box_cone_measures(box: np.ndarray, pose: LightPose) -> tuple[float, flo
     """Measure one box as :func:`cone_measures` does, in plain floats, to the same bits.
 
     The same operations in the same order (IEEE arithmetic rounds each alike,
-    and min and max are exact): the squared lengths sum x's and z's, then
-    y's; a corner's rotated coordinate sums its x, y and z terms in that order.
+    and min and max are exact): the squared lengths are
+    :func:`~pvshadows.geometry.transforms.squared_length`'s; a corner's
+    rotated coordinate sums its x, y and z terms in that order.
     """
     position = pose.position.tolist()
     low, high = box.tolist()
@@ -154,25 +161,19 @@ def _one_box_cone_measures(box: np.ndarray, pose: LightPose) -> tuple[float, flo
     high = [b - p for b, p in zip(high, position, strict=True)]
     outside = [max(max(a, -b), 0.0) for a, b in zip(low, high, strict=True)]
     corner = [max(abs(a), abs(b)) for a, b in zip(low, high, strict=True)]
-    near = (outside[0] * outside[0] + outside[2] * outside[2]) + outside[1] * outside[1]
-    far = (corner[0] * corner[0] + corner[2] * corner[2]) + corner[1] * corner[1]
     # The terms of each rotated coordinate: along each axis, from the min and max corners.
     (x0, x1, x2), (y0, y1, y2), (z0, z1, z2) = (
         [(row[axis] * low[axis], row[axis] * high[axis]) for axis in range(3)]
         for row in _spot_rotation(pose)[:3, :3].tolist()
     )
     spread = -math.inf
-    for i, j, k in _CORNER_SIDES:
+    for i, j, k in CORNER_SIDES:
         depth = -((z0[i] + z1[j]) + z2[k])
         if not depth > 0.0:  # a corner beside or behind the light: no bound
-            return near, far, math.inf
+            return squared_length(outside), squared_length(corner), math.inf
         x, y = (x0[i] + x1[j]) + x2[k], (y0[i] + y1[j]) + y2[k]
         spread = max(spread, max(abs(x), abs(y)) / depth)
-    return near, far, spread
-
-
-#: Which side (min 0, max 1) of a box each of its eight corners takes along x, y and z.
-_CORNER_SIDES = [(i, j, k) for i in (0, 1) for j in (0, 1) for k in (0, 1)]
+    return squared_length(outside), squared_length(corner), spread
 
 
 class ConeMeasures(NamedTuple):

@@ -378,30 +378,22 @@ class Snapshot:
 
         The flat actor's own row, when it receives, is left out (``inf`` and
         ``-inf``). An unchanged flat actor takes the parent's heights,
-        patched in the rows of the receivers replaced since.
+        measured again in the rows of the receivers replaced since.
         """
         heights = self._heights_by_sheet.get(id(state))
         if heights is not None:
             return heights
-        # A box's corner lowest along the normal takes the box's maximum where the
-        # normal is negative and its minimum where it is positive.
-        up, down = np.maximum(sheet.normal, 0.0), np.minimum(sheet.normal, 0.0)
-        parent = self.parent
-        kept = None if parent is None else parent.__dict__.get("_heights_by_sheet", {})
-        kept_heights = None if kept is None else kept.get(id(state))
+        kept = self._inherited("_heights_by_sheet")
+        kept_heights = kept.get(id(state)) if isinstance(kept, dict) else None
         if kept_heights is None:
-            bounds = self.receiver_bounds
-            low = bounds[:, 0] @ up + bounds[:, 1] @ down
-            high = bounds[:, 1] @ up + bounds[:, 0] @ down
+            low, high = _extents_along(self.receiver_bounds, sheet.normal)
             row = self._receiver_rows.get(id(state))
             if row is not None:
                 low[row], high[row] = np.inf, -np.inf
         else:
+            rows = [row for row, _ in self.patches(RECEIVERS)]
             low, high = kept_heights[0].copy(), kept_heights[1].copy()
-            for row, receiver in self.patches(RECEIVERS):
-                bottom, top = receiver.bounds
-                low[row] = bottom @ up + top @ down
-                high[row] = top @ up + bottom @ down
+            low[rows], high[rows] = _extents_along(self.receiver_bounds[rows], sheet.normal)
         heights = self._heights_by_sheet[id(state)] = (low, high)
         return heights
 
@@ -962,6 +954,19 @@ class SceneReader:
             actor.GetProperty().GetRepresentation() == vtk.VTK_SURFACE,
         )
         return state, not receiver
+
+
+def _extents_along(bounds: np.ndarray, normal: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return the lowest and highest corner of each ``(n, 2, 3)`` box along ``normal``.
+
+    A box's lowest corner takes its minimum where the normal is positive
+    and its maximum where it is negative. Summed per box in the same order
+    for any number of boxes, so that rows measured again alone match rows
+    measured among all.
+    """
+    up, down = np.maximum(normal, 0.0), np.minimum(normal, 0.0)
+    low, high = bounds[:, 0], bounds[:, 1]
+    return (low * up + high * down).sum(axis=1), (high * up + low * down).sum(axis=1)
 
 
 def hides_what_is_behind(state: ActorState, renderer: vtk.vtkRenderer) -> bool:
