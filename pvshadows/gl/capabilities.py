@@ -56,3 +56,29 @@ def extension_names(gl: ModuleType) -> set[str]:
     """
     count = int(gl.glGetIntegerv(gl.GL_NUM_EXTENSIONS))
     return {gl.glGetStringi(gl.GL_EXTENSIONS, i).decode() for i in range(count)}
+
+
+def image_copies_supported(gl: ModuleType) -> bool:
+    """Tell whether the current context copies texels between textures (``glCopyImageSubData``).
+
+    Parameters
+    ----------
+    gl : module
+        ``OpenGL.GL`` for the current context.
+
+    Returns
+    -------
+    bool
+        ``True`` for OpenGL 4.3 or later, or with ``GL_ARB_copy_image``.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.gl.binding import opengl_for
+    >>> from pvshadows.gl.capabilities import image_copies_supported
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> pl.ren_win.Render()
+    >>> image_copies_supported(opengl_for(pl.ren_win))  # Mesa's OpenGL 4.5
+    True
+    """
+    return gl_version(gl) >= (4, 3) or "GL_ARB_copy_image" in extension_names(gl)

@@ -18,7 +18,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
-from pvshadows.gl.capabilities import extension_names, gl_version
+from pvshadows.gl.capabilities import extension_names, gl_version, image_copies_supported
 from pvshadows.gl.framebuffer import finish_binding
 
 
@@ -48,7 +48,7 @@ def cube_arrays_supported(gl: ModuleType) -> bool:
     """
     if gl_version(gl) >= (4, 3):
         return True
-    return {"GL_ARB_texture_cube_map_array", "GL_ARB_copy_image"} <= extension_names(gl)
+    return image_copies_supported(gl) and "GL_ARB_texture_cube_map_array" in extension_names(gl)
 
 
 class CubeArray:
@@ -177,7 +177,7 @@ class CubeArray:
         self._attached = 0  # a name GL hands out again may be a new texture
         self.allocations += 1
 
-    def bind_cleared(self, slot: int, face: int | None = None) -> None:
+    def bind_cleared(self, slot: int, face: int | None = None, *, clear: bool = True) -> None:
         """Bind the framebuffer on one slot, its faces cleared to depth 1.
 
         Parameters
@@ -189,30 +189,35 @@ class CubeArray:
             clear it; ``None`` clears the slot's six faces and attaches the
             whole array as one layered attachment, for a geometry shader that
             writes ``gl_Layer = 6 * slot + face``.
+        clear : bool, default: True
+            ``False`` binds without clearing (to draw over what the faces hold).
         """
         gl = self._gl
         self._window.GetState().vtkglBindFramebuffer(gl.GL_FRAMEBUFFER, self._framebuffer)
         size = (self.resolution, self.resolution)
         # an array holding this slot only is cleared whole through the layered attachment
         alone = face is None and self.capacity == 1
-        if alone and self._attached == self._handle:  # attached and checked last time
+        layered = face is None and (alone or not clear)
+        if layered and self._attached == self._handle:  # attached and checked last time
             self._window.GetState().vtkglViewport(0, 0, *size)
-            gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
+            if clear:
+                gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
             return
         self._attached = 0
-        faces = () if alone else range(6) if face is None else (face,)
+        faces = () if layered else range(6) if face is None else (face,)
         for order, each in enumerate(faces):
             gl.glFramebufferTextureLayer(
                 gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self._handle, 0, 6 * slot + each
             )
             if order == 0:  # one layer complete means every layer of the array is
                 finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
-            gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
+            if clear:
+                gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
         if face is None:
             gl.glFramebufferTexture(gl.GL_FRAMEBUFFER, gl.GL_DEPTH_ATTACHMENT, self._handle, 0)
             finish_binding(gl, self._window, gl.GL_NONE, size, "shadow-map")
             self._attached = self._handle
-            if alone:
+            if alone and clear:
                 gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
 
     def read_faces(self, slot: int) -> np.ndarray:
@@ -311,6 +316,10 @@ class CubeSlot:
     def bind_cleared(self, face: int | None = None) -> None:
         """Bind the framebuffer on this cube, cleared (see :meth:`CubeArray.bind_cleared`)."""
         self._array.bind_cleared(self.slot, face)
+
+    def bind_as_target(self, face: int | None = None) -> None:
+        """Bind the framebuffer on this cube without clearing it, to draw over what it holds."""
+        self._array.bind_cleared(self.slot, face, clear=False)
 
     def read_faces(self) -> np.ndarray:
         """Return the six faces' depths as float32 ``(6, res, res)`` (for tests and debugging)."""

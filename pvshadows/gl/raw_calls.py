@@ -69,3 +69,32 @@ def raw_calls() -> SimpleNamespace:
         query_counter=_bound("glQueryCounter", _uint, _uint),
         query_result=_bound("glGetQueryObjectui64v", _uint, _uint, _uint64_p),
     )
+
+
+@cache
+def image_copy() -> Callable:
+    """Return ``glCopyImageSubData`` bound with plain ctypes.
+
+    Call it only where the context copies images
+    (:func:`~pvshadows.gl.capabilities.image_copies_supported`), with the
+    context current and PyOpenGL bound to the window's platform.
+
+    Returns
+    -------
+    callable
+        ``glCopyImageSubData(source, target, level, x, y, z, destination,
+        target, level, x, y, z, width, height, depth)``.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.gl.binding import opengl_for
+    >>> from pvshadows.gl.raw_calls import image_copy
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> pl.ren_win.Render()
+    >>> _ = opengl_for(pl.ren_win)
+    >>> callable(image_copy())
+    True
+    """
+    place = (_int,) * 4  # level, x, y, z
+    return _bound("glCopyImageSubData", _uint, _uint, *place, _uint, _uint, *place, *(_int,) * 3)

@@ -9,11 +9,14 @@ parameters like any texture of its own.
 
 from __future__ import annotations
 
+from typing import Protocol
+
 import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.framebuffer import finish_binding
+from pvshadows.gl.raw_calls import image_copy
 
 
 class DepthTexture:
@@ -36,6 +39,8 @@ class DepthTexture:
 
     #: OpenGL target of the texture.
     target_name = "GL_TEXTURE_2D"
+    #: First layer-face the depth pass writes, and how many (six for a cube).
+    layer_base, faces = 0, 1
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow, resolution: int) -> None:
         self._window = window
@@ -127,6 +132,63 @@ class DepthTexture:
             self.texture.ReleaseGraphicsResources(self._window)
 
 
+class CopyTarget(Protocol):
+    """A depth texture, or a cube's layers of a larger one, to copy a map into."""
+
+    @property
+    def resolution(self) -> int:
+        """Its size in texels."""
+
+    @property
+    def handle(self) -> int:
+        """The OpenGL texture name."""
+
+    @property
+    def target(self) -> int:
+        """The OpenGL texture target."""
+
+    @property
+    def layer_base(self) -> int:
+        """Its first layer (a cube's first face)."""
+
+
+def copy_depth(source: DepthTexture, target: CopyTarget) -> None:
+    """Copy a map's depth into another map of the same size and kind, on the GPU.
+
+    Needs ``glCopyImageSubData``
+    (:func:`~pvshadows.gl.capabilities.image_copies_supported`).
+
+    Parameters
+    ----------
+    source : DepthTexture
+        The map copied (a cube copies its six faces).
+    target : DepthTexture or CubeSlot
+        Where it goes: a texture of the same kind, or a cube's slot of an array.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pyvista as pv
+    >>> from pvshadows.gl.textures import DepthCube, copy_depth
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> pl.ren_win.Render()
+    >>> source, target = DepthCube(pl.ren_win, 4), DepthCube(pl.ren_win, 4)
+    >>> source.bind_cleared()
+    >>> copy_depth(source, target)
+    >>> bool((target.read_faces() == 1.0).all())
+    True
+    """
+    if target.resolution != source.resolution:
+        msg = f"a {source.resolution} texel map cannot be copied into a {target.resolution} one"
+        raise ValueError(msg)
+    size = source.resolution
+    image_copy()(
+        source.handle, source.target, 0, 0, 0, source.layer_base,
+        target.handle, target.target, 0, 0, 0, target.layer_base,
+        size, size, source.faces,
+    )  # fmt: skip
+
+
 class DepthMap(DepthTexture):
     """A 2D depth map (``GL_DEPTH_COMPONENT32F``) for spot and directional lights.
 
@@ -139,8 +201,7 @@ class DepthCube(DepthTexture):
     """A six-face depth cube map (``GL_DEPTH_COMPONENT32F``) for point lights."""
 
     target_name = "GL_TEXTURE_CUBE_MAP"
-    #: First layer-face the depth pass writes (a cube of its own: 0).
-    layer_base = 0
+    faces = 6
 
     def _create(self) -> vtk.vtkTextureObject:
         gl = self._gl
@@ -161,6 +222,8 @@ class DepthCube(DepthTexture):
                 gl.GL_FLOAT,
                 None,
             )
+        # one level: complete before VTK sets its filters, as glCopyImageSubData requires
+        gl.glTexParameteri(gl.GL_TEXTURE_CUBE_MAP, gl.GL_TEXTURE_MAX_LEVEL, 0)
         gl.glBindTexture(gl.GL_TEXTURE_CUBE_MAP, 0)
         units.Free(unit)
         gl.glEnable(gl.GL_TEXTURE_CUBE_MAP_SEAMLESS)

@@ -12,7 +12,7 @@ from pvshadows.geometry.transforms import column_major, cube_face_projections
 from pvshadows.gl.caster_draws import CasterDraws, draw_casters
 from pvshadows.gl.cube_array import CubeSlot
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
-from pvshadows.gl.textures import DepthCube
+from pvshadows.gl.textures import DepthCube, copy_depth
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.report import PassReport
 from pvshadows.passes.gl_state import FaceCulling, depth_only_state
@@ -50,6 +50,7 @@ class CubeDepthPass:
         far: float,
         passes: str,
         timer: PassTimer,
+        under: DepthCube | None = None,
     ) -> list[PassReport]:
         """Render the casters into the cube.
 
@@ -69,6 +70,9 @@ class CubeDepthPass:
             face with the casters culled against that face's frustum.
         timer : PassTimer
             Records each pass's GPU time.
+        under : DepthCube, optional
+            A cube of the same size whose depth the casters are drawn over
+            (copied in first); the cube starts cleared when not given.
 
         Returns
         -------
@@ -111,7 +115,7 @@ class CubeDepthPass:
                 )
                 records.append(record)
                 with timer.measure(record):
-                    cube.bind_cleared()
+                    _bind(cube, None, under, copy=True)
                     draw_casters(programs(-1), casters, cull)
             else:
                 for face in range(6):
@@ -119,7 +123,7 @@ class CubeDepthPass:
                     record = PassReport(f"cube face {_FACE_NAMES[face]}", "run")
                     records.append(record)
                     with timer.measure(record):
-                        cube.bind_cleared(face)
+                        _bind(cube, face, under, copy=face == 0)
                         if not len(drawn):
                             record.status, record.detail = (
                                 "skipped",
@@ -133,6 +137,21 @@ class CubeDepthPass:
     def release(self) -> None:
         """Release the compiled programs."""
         self._programs.release()
+
+
+def _bind(
+    cube: DepthCube | CubeSlot, face: int | None, under: DepthCube | None, *, copy: bool
+) -> None:
+    """Bind a face (``None``: all six) to draw into: cleared, or holding ``under``'s depth.
+
+    ``copy`` copies ``under``'s six faces in first (once per cube).
+    """
+    if under is None:
+        cube.bind_cleared(face)
+        return
+    if copy:
+        copy_depth(under, cube)
+    cube.bind_as_target(face)
 
 
 _FACE_NAMES = ("+X", "-X", "+Y", "-Y", "+Z", "-Z")

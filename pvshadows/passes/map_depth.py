@@ -8,7 +8,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import column_major
 from pvshadows.gl.caster_draws import CasterDraws, draw_casters
 from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
-from pvshadows.gl.textures import DepthMap
+from pvshadows.gl.textures import DepthMap, copy_depth
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.report import PassReport
 from pvshadows.passes.gl_state import FaceCulling, depth_only_state
@@ -48,6 +48,7 @@ class MapDepthPass:
         along_z: bool,
         timer: PassTimer,
         detail: str,
+        under: DepthMap | None = None,
     ) -> list[PassReport]:
         """Render the casters into the map.
 
@@ -67,6 +68,9 @@ class MapDepthPass:
             Records the pass's GPU time.
         detail : str
             What the report says about the pass.
+        under : DepthMap, optional
+            A map of the same size whose depth the casters are drawn over
+            (copied in first); the map starts cleared when not given.
 
         Returns
         -------
@@ -84,9 +88,12 @@ class MapDepthPass:
             return chosen
 
         report = PassReport("map depth", "run", detail)
-        with depth_only_state(self._window) as gl, timer.measure(report):
-            depth.bind_as_target()
-            gl.glClear(gl.GL_DEPTH_BUFFER_BIT)
+        with depth_only_state(self._window), timer.measure(report):
+            if under is None:
+                depth.bind_cleared()
+            else:
+                copy_depth(under, depth)
+                depth.bind_as_target()
             draw_casters(program, casters, FaceCulling(self._window))
         return [report]
 

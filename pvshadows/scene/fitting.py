@@ -31,6 +31,9 @@ from pvshadows.scene.snapshot import ActorState, Snapshot
 SIZE_STEPS_PER_OCTAVE = 8
 #: Texels of margin kept on each side of the fitted region.
 MARGIN_TEXELS = 2
+#: A spot's map keeps its fit while its casters need no more than it and at least
+#: ``1 / REFIT_SLACK`` of it, in far distance and in spread (:func:`spot_fit_holds`).
+REFIT_SLACK = 1.1
 
 
 @dataclass(frozen=True)
@@ -97,6 +100,40 @@ def spot_fit(
     fov = 2.0 * np.degrees(np.arctan(half))
     projection = perspective(fov, 1.0, near, far) @ rotation
     return SpotFit(rotation, projection, float(2.0 * half / resolution))
+
+
+def spot_fit_holds(kept: tuple[float, float | None], needed: tuple[float, float | None]) -> bool:
+    """Tell whether a spot's map fitted to ``kept`` can stand in for one fitted to ``needed``.
+
+    It can when it reaches as far and spreads as wide, and neither by more
+    than :data:`REFIT_SLACK` (its texels then are at most that much larger):
+    a caster swaying at the edge of the fit leaves the map's projection as
+    it was, so the map is redrawn over its still casters' depth
+    (:mod:`pvshadows.techniques.still_casters`).
+
+    Parameters
+    ----------
+    kept, needed : tuple
+        ``(far, spread)`` of :func:`spot_fit`, ``spread`` ``None`` for the
+        whole cone.
+
+    Returns
+    -------
+    bool
+        Whether to keep the map's fit.
+
+    Examples
+    --------
+    >>> from pvshadows.scene.fitting import spot_fit_holds
+    >>> spot_fit_holds((10.0, 0.5), (9.8, 0.49)), spot_fit_holds((10.0, 0.5), (10.2, 0.5))
+    (True, False)
+    """
+    (far, spread), (far_needed, spread_needed) = kept, needed
+    if not far_needed <= far <= REFIT_SLACK * far_needed:
+        return False
+    if spread is None or spread_needed is None:
+        return spread is spread_needed
+    return spread_needed <= spread <= REFIT_SLACK * spread_needed
 
 
 def _spot_rotation(pose: LightPose) -> np.ndarray:

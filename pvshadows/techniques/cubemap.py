@@ -41,6 +41,7 @@ from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.per_light import LightState, PerLightMaps, caster_draws
+from pvshadows.techniques.still_casters import StillCasters, depth_steps
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -73,6 +74,7 @@ class CubeState(LightState):
     measures: CasterMeasureCache[CubeMeasures] = field(
         default_factory=lambda: CasterMeasureCache(cube_measures)
     )
+    still: StillCasters[DepthCube] | None = None
 
     def release_map(self) -> None:
         """Release the cube."""
@@ -229,7 +231,10 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         ):
             if state is not None:
                 state.release()
-            state = CubeState(self._new_cube(settings.resolution, context, own))
+            resolution = settings.resolution
+            state = CubeState(self._new_cube(resolution, context, own))
+            if self._still_maps:
+                state.still = StillCasters(lambda: DepthCube(self._window, resolution))
             self._states[plan.key] = state
         if state.planned is plan and state.key is not None and state.companion is None:
             reused = f"light and casters unchanged since frame {state.frame}: map still right"
@@ -258,14 +263,25 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             state.planned = plan
             reused = f"light and casters unchanged since frame {state.frame}: map still right"
             return [PassReport("cube depth", "reused", reused), *companion]
-        casters = caster_draws(
-            opaque, translation(-position), context.snapshot, context.buffers, settings
-        )
-        masks = snapshot.for_casters(measures.faces, opaque)
         assert self._pass is not None
-        reports = self._pass.render(
-            state.cube, casters, masks, state.far, settings.passes, context.timer
-        )
+        reports = []
+        for step in depth_steps(state.still, key[:-1], opaque, key[-1], state.cube):
+            self.casters_drawn += len(step.casters)
+            drawn = caster_draws(
+                step.casters, translation(-position), snapshot, context.buffers, settings
+            )
+            masks = snapshot.for_casters(measures.faces, step.casters)
+            reports += step.named(
+                self._pass.render(
+                    step.target,
+                    drawn,
+                    masks,
+                    state.far,
+                    settings.passes,
+                    context.timer,
+                    under=step.under,
+                )
+            )
         state.key, state.frame, state.planned = key, context.frame, plan
         return reports + companion
 

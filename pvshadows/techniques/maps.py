@@ -29,6 +29,7 @@ from pvshadows.scene.fitting import (
     SunFit,
     cone_measures,
     spot_fit,
+    spot_fit_holds,
     spot_shadowing_rows,
     sun_actors,
     sun_fit,
@@ -40,6 +41,7 @@ from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
 from pvshadows.techniques.per_light import LightState, PerLightMaps, caster_draws
+from pvshadows.techniques.still_casters import StillCasters, depth_steps
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -63,6 +65,8 @@ class MapState(LightState):
     range_key: tuple | None = None
     range: tuple[float, float] = (0.0, 1.0)
     range_snapshot: object = None
+    #: The far distance and spread a spot's map is fitted to (:func:`spot_fit_holds`).
+    fitted_for: tuple[float, float | None] = (0.0, None)
     texel: float = 1.0
     measures: CasterMeasureCache[ConeMeasures] = field(
         default_factory=lambda: CasterMeasureCache(cone_measures)
@@ -77,6 +81,7 @@ class MapState(LightState):
     #: it was drawn for (:attr:`planned_fit`) kept too.
     planned: Cast | None = None
     planned_fit: SunFit | None = None
+    still: StillCasters[DepthMap] | None = None
 
     def release_map(self) -> None:
         """Release the map."""
@@ -109,7 +114,10 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         if state is None or state.depth.resolution != plan.settings.resolution:
             if state is not None:
                 state.release()
-            state = MapState(DepthMap(self._window, plan.settings.resolution))
+            resolution = plan.settings.resolution
+            state = MapState(DepthMap(self._window, resolution))
+            if self._still_maps:
+                state.still = StillCasters(lambda: DepthMap(self._window, resolution))
             self._states[key] = state
         return state
 
@@ -151,12 +159,14 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             )
             shadowing = spot_shadowing_rows(pose, inside, snapshot)
             spread = float(measures.spread[shadowing].max()) if len(shadowing) else None
-            fit = spot_fit(pose, settings.resolution, far * 1e-4, far, spread)
-            state.range_key, state.range = range_key, (nearest, far)
+            kept = state.range_key is not None and state.range_key[:2] == range_key[:2]
+            if not (kept and spot_fit_holds(state.fitted_for, (far, spread))):
+                fit = spot_fit(pose, settings.resolution, far * 1e-4, far, spread)
+                state.world_to_light = translation(-pose.position)
+                state.light_to_clip, state.texel = fit.light_to_clip, fit.texel
+                state.fitted_for = (far, spread)
+            state.range_key, state.range = range_key, (nearest, state.fitted_for[0])
             state.range_snapshot = context.snapshot
-            state.world_to_light = translation(-pose.position)
-            state.light_to_clip = fit.light_to_clip
-            state.texel = fit.texel
         nearest, far = state.range
         state.params = (far, state.texel, settings.light_size, nearest)
         state.drawn = bool(inside)
@@ -257,18 +267,26 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             return [PassReport("map depth", "reused", reused), *companion]
         assert self._pass is not None and state.light_to_clip is not None
         assert state.world_to_light is not None  # set with the fit, before any draw
-        drawn = caster_draws(
-            opaque, state.world_to_light, context.snapshot, context.buffers, settings
-        )
-        reports = self._pass.render(
-            state.depth,
-            drawn,
-            state.light_to_clip,
-            depth_range,
-            along_z=along_z,
-            timer=context.timer,
-            detail=detail,
-        )
+        reports = []
+        for step in depth_steps(state.still, key[:-1], opaque, key[-1], state.depth):
+            self.casters_drawn += len(step.casters)
+            drawn = caster_draws(
+                step.casters, state.world_to_light, context.snapshot, context.buffers, settings
+            )
+            if step.under is not None:
+                detail = f"{len(step.casters)} moving casters over the still ones' depth"
+            reports += step.named(
+                self._pass.render(
+                    step.target,
+                    drawn,
+                    state.light_to_clip,
+                    depth_range,
+                    along_z=along_z,
+                    timer=context.timer,
+                    detail=detail,
+                    under=step.under,
+                )
+            )
         state.key, state.frame = key, context.frame
         return reports + companion
 

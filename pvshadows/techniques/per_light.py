@@ -9,6 +9,8 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
+from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.capabilities import image_copies_supported
 from pvshadows.gl.caster_draws import CasterDraws
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import Cast
@@ -17,27 +19,32 @@ from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.filtering import FilterBindings, lookup_shading
+from pvshadows.techniques.still_casters import StillCasters
 from pvshadows.techniques.translucent import Companion
 
 
 class LightState(ABC):
     """What a technique keeps for one light between frames: its map and the map's companion.
 
-    A subclass (a dataclass) holds ``companion`` as a field, default ``None``,
-    and says in :meth:`release_map` how its map is released.
+    A subclass (a dataclass) holds ``companion`` and ``still`` as fields,
+    default ``None``, and says in :meth:`release_map` how its map is released.
     """
 
     #: The transmittance companion of its map, when some of its casters are translucent.
     companion: Companion | None
+    #: Which casters a redraw draws over a still map (``None`` where maps cannot be copied).
+    still: StillCasters | None
 
     @abstractmethod
     def release_map(self) -> None:
         """Release the light's map."""
 
     def release(self) -> None:
-        """Release the map and its companion."""
+        """Release the map, its companion and its still map."""
         self.release_map()
         self.drop_companion()
+        if self.still is not None:
+            self.still.release()
 
     def drop_companion(self) -> None:
         """Release the transmittance companion, if any."""
@@ -119,6 +126,10 @@ class PerLightMaps(Generic[StateT, PassT]):
         self._states: dict[str, StateT] = {}
         self._pass: PassT | None = None
         self._shadings: dict[tuple, LightShading] = {}
+        #: Whether a redraw may draw its moving casters over a still map (it copies it).
+        self._still_maps = image_copies_supported(opengl_for(window))
+        #: Casters handed to the depth passes since this object was made.
+        self.casters_drawn = 0
 
     def _lookup_shading(
         self,
