@@ -107,31 +107,29 @@ class CubeDepthPass:
 
             return program
 
+        if passes == "single":
+            record = PassReport("cube depth (six faces, one draw)", "run", _faces_text(face_mask))
+            records.append(record)
+            with timer.measure(record), depth_only_state(self._window):
+                _bind(cube, None, under, copy=True)
+                draw_casters(programs(-1), casters, FaceCulling(self._window))
+            return records
         with depth_only_state(self._window):
             cull = FaceCulling(self._window)
-            if passes == "single":
-                record = PassReport(
-                    "cube depth (six faces, one draw)", "run", _faces_text(face_mask)
-                )
+            for face in range(6):
+                drawn = casters.subset(face_masks & (1 << face) != 0)
+                record = PassReport(f"cube face {_FACE_NAMES[face]}", "run")
                 records.append(record)
                 with timer.measure(record):
-                    _bind(cube, None, under, copy=True)
-                    draw_casters(programs(-1), casters, cull)
-            else:
-                for face in range(6):
-                    drawn = casters.subset(face_masks & (1 << face) != 0)
-                    record = PassReport(f"cube face {_FACE_NAMES[face]}", "run")
-                    records.append(record)
-                    with timer.measure(record):
-                        _bind(cube, face, under, copy=face == 0)
-                        if not len(drawn):
-                            record.status, record.detail = (
-                                "skipped",
-                                "no caster in this face's frustum",
-                            )
-                            continue
-                        record.detail = f"{len(drawn)} of {len(casters)} casters"
-                        draw_casters(programs(face), drawn, cull)
+                    _bind(cube, face, under, copy=face == 0)
+                    if not len(drawn):
+                        record.status, record.detail = (
+                            "skipped",
+                            "no caster in this face's frustum",
+                        )
+                        continue
+                    record.detail = f"{len(drawn)} of {len(casters)} casters"
+                    draw_casters(programs(face), drawn, cull)
         return records
 
     def release(self) -> None:

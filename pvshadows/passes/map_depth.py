@@ -88,7 +88,7 @@ class MapDepthPass:
             return chosen
 
         report = PassReport("map depth", "run", detail)
-        with depth_only_state(self._window), timer.measure(report):
+        with timer.measure(report), depth_only_state(self._window):
             if under is None:
                 depth.bind_cleared()
             else:

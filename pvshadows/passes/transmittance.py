@@ -113,7 +113,7 @@ class TransmittancePass:
         """
         program = self._program("sun" if along_z else "spot")
         report = PassReport(PASS_NAME, "run", _detail(casters))
-        with transmittance_state(self._window) as gl, timer.measure(report):
+        with timer.measure(report), transmittance_state(self._window) as gl:
             target.bind_as_target()
             gl.glClear(gl.GL_COLOR_BUFFER_BIT)
             bind_program(self._window, program)
@@ -154,7 +154,7 @@ class TransmittancePass:
         projections = cube_face_projections(far * 1e-4, far)
         program = self._program(passes)
         report = PassReport(f"{PASS_NAME} (cube, {passes})", "run", _detail(casters))
-        with transmittance_state(self._window) as gl, timer.measure(report):
+        with timer.measure(report), transmittance_state(self._window) as gl:
             bind_program(self._window, program)
             program.SetUniformf("invFar", 1.0 / far)
             if passes == "single":

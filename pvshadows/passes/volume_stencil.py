@@ -178,7 +178,7 @@ class VolumePasses:
             The pass.
         """
         record = PassReport("volume depth pre-pass", "run", f"{len(draws)} actors")
-        with self._state() as (gl, state), timer.measure(record):
+        with timer.measure(record), self._state() as (gl, state):
             target.bind(None)
             state.vtkglEnable(gl.GL_DEPTH_TEST)
             state.vtkglDepthFunc(gl.GL_LESS)
