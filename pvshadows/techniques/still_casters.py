@@ -134,6 +134,8 @@ class StillCasters(Generic[MapT]):
         self._changed: set[int] = set()
         #: Whether the still map holds the casters not in ``_moving``.
         self._still_drawn = False
+        #: Whether those casters are too few for a still map (fewer as ``_moving`` grows).
+        self._too_few = False
 
     def steps(
         self, view: object, casters: list[ActorState], keys: tuple, target: TargetT
@@ -184,8 +186,11 @@ class StillCasters(Generic[MapT]):
         if self._still_drawn and not fresh:
             assert self._map is not None  # drawn
             return [DepthStep(target, [casters[row] for row in sorted(rows)], self._map)]
+        if self._too_few:
+            return every
         still = [caster for row, caster in enumerate(casters) if row not in rows]
         if not worth_a_still_map(still):
+            self._too_few = True
             return every
         if self._map is None:
             self._map = self._make_map()
@@ -195,7 +200,7 @@ class StillCasters(Generic[MapT]):
 
     def _start_afresh(self) -> None:
         self._moving, self._changed = set(), set()
-        self._still_drawn = False
+        self._still_drawn = self._too_few = False
 
     def release(self) -> None:
         """Release the still map, if one was made."""
