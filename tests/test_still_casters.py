@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+import pyvista as pv
 
 from conftest import draw
 from pvshadows.techniques import still_casters
@@ -126,3 +127,34 @@ def test_fifty_spheres_one_swaying_draw_it_alone_without_a_lowered_threshold(lig
         counts.append(technique.casters_drawn - before)
     assert counts[-2:] == [1, 1]
     assert sum(counts) <= 3 * 51 + 2
+
+
+def test_a_small_actor_beside_a_big_static_mesh_is_drawn_without_it(monkeypatch):
+    monkeypatch.undo()
+
+    def scene():
+        pl = pv.Plotter(off_screen=True, window_size=(320, 240), lighting="none")
+        pl.add_mesh(pv.Plane(i_size=12, j_size=12))
+        # 111 390 triangles: over STILL_TRIANGLES, alone beside the ground
+        pl.add_mesh(pv.Sphere(radius=1.2, center=(0, 0, 1.4), theta_resolution=237,
+                              phi_resolution=237))  # fmt: skip
+        small = pl.add_mesh(pv.Sphere(radius=0.3, center=(2, 0, 0.5)), color="red")
+        light = pv.Light(position=(0.5, -0.3, 6), focal_point=(0.5, -0.3, 0), positional=True,
+                         cone_angle=180)  # fmt: skip
+        pl.add_light(light)
+        pl.shadows.enable(lights=[light], filter="hard")
+        draw(pl)
+        return pl, small
+
+    (shown, small), (full, twin_small) = scene(), scene()
+    for state in full.shadows._renderers[0]._techniques["cubemap"]._states.values():
+        state.still = None
+    technique = shown.shadows._renderers[0]._techniques["cubemap"]
+    counts = []
+    for _ in range(4):
+        before = technique.casters_drawn
+        sway(small, 0.01)
+        sway(twin_small, 0.01)
+        assert np.array_equal(draw(shown), draw(full))
+        counts.append(technique.casters_drawn - before)
+    assert counts == [3, 3, 1, 1]

@@ -123,9 +123,9 @@ class CubeDepthPass:
                 with timer.measure(record):
                     _bind(cube, face, under, copy=face == 0)
                     if not len(drawn):
-                        record.status, record.detail = (
-                            "skipped",
-                            "no caster in this face's frustum",
+                        record.status = "skipped"
+                        record.detail = "no caster in this face's frustum" + (
+                            "" if under is None else ": it holds the still casters' depth"
                         )
                         continue
                     record.detail = f"{len(drawn)} of {len(casters)} casters"
