@@ -274,7 +274,8 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
                 step.casters, state.world_to_light, context.snapshot, context.buffers, settings
             )
             if step.under is not None:
-                detail = f"{len(step.casters)} moving casters over the still ones' depth"
+                moving = len(step.casters)
+                detail = f"{moving} moving caster{'s' * (moving != 1)} over the still ones' depth"
             reports += step.named(
                 self._pass.render(
                     step.target,
