@@ -9,10 +9,16 @@ from pvshadows.techniques import still_casters
 from pvshadows.tools.overhead import OverheadScene, build_scene
 from pvshadows.tools.scenes import standard_scene
 
-# A sun's map is fitted to its casters: in this scene each of them holds an edge of the fit,
-# so a moving one changes the map's projection and every caster is drawn (as tested below
-# for a moved light).
-CASES = [("point", "single"), ("point", "six"), ("spot", "single")]
+# Casters drawn by each frame of a swaying sphere (of 4): a first move draws every caster;
+# the second the 3 still ones into the still map, and the sphere over them; then the sphere
+# alone. A sun's fit is the casters' (each holds an edge of it here): the first move fits
+# the map over both places of the sphere, so its still map starts a frame later.
+CASES = [
+    ("point", "single", [4, 4, 1, 1]),
+    ("point", "six", [4, 4, 1, 1]),
+    ("spot", "single", [4, 4, 1, 1]),
+    ("directional", "single", [4, 4, 4, 1]),
+]
 
 
 def technique_of(scene):
@@ -60,13 +66,11 @@ def sway(actor, step=0.04):
     actor.AddPosition(-step if actor.GetPosition()[0] > 0 else step, 0.0, 0.0)
 
 
-@pytest.mark.parametrize(("light", "passes"), CASES)
-def test_a_moving_actor_is_drawn_alone_and_the_map_is_the_full_redraws(light, passes):
+@pytest.mark.parametrize(("light", "passes", "expected"), CASES)
+def test_a_moving_actor_is_drawn_alone_and_the_map_is_the_full_redraws(light, passes, expected):
     pair = scenes(light, passes)
     assert caster_count(pair[0]) == 4
-    # A first move draws every caster; the second the 3 still ones into the still map,
-    # and the sphere over them; then the sphere alone.
-    assert drawn_per_frame(pair, lambda scene: sway(scene.sphere), 4) == [4, 4, 1, 1]
+    assert drawn_per_frame(pair, lambda scene: sway(scene.sphere), 4) == expected
     names = [p.name for p in pair[0].plotter.shadows.last_frame.lights[0].passes]
     assert not any("still" in name for name in names)
     assert pair[0].plotter.shadows.measure(pair[0].light).misclassified <= 0.01

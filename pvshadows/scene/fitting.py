@@ -612,14 +612,84 @@ def _fit_over(
         return None
     fit_lo = np.maximum(caster_lo[over].min(axis=0), region_lo)
     fit_hi = np.minimum(caster_hi[over].max(axis=0), region_hi)
+    near = float(caster_near[over].min())
+    far = max(float(caster_far[over].max()), float(receiver_far[visible].max()))
+    return _fit_around(rotation, fit_lo, fit_hi, near, far, resolution)
+
+
+def _fit_around(
+    rotation: np.ndarray,
+    fit_lo: np.ndarray,
+    fit_hi: np.ndarray,
+    near: float,
+    far: float,
+    resolution: int,
+) -> SunFit:
+    """Return the map holding a region across the light (light axes), ``near`` to ``far`` along.
+
+    Its size rounded up to one of ``SIZE_STEPS_PER_OCTAVE`` per octave, its
+    centre snapped to its texels, its depths to a sixteenth of their range.
+    """
     size = max(float((fit_hi - fit_lo).max()), 1e-30)
     size = 2.0 ** (math.ceil(math.log2(size) * SIZE_STEPS_PER_OCTAVE) / SIZE_STEPS_PER_OCTAVE)
     texel = size / (resolution - 2 * MARGIN_TEXELS)
     center = np.round(0.5 * (fit_lo + fit_hi) / texel) * texel
-    near = float(caster_near[over].min())
-    far = max(float(caster_far[over].max()), float(receiver_far[visible].max()))
     step = 2.0 ** math.ceil(math.log2(max(far - near, 1e-30))) / 16.0
     near = math.floor(near / step) * step - step
     far = math.ceil(far / step) * step + step
     origin = rotation[:3, :3].T @ np.array([center[0], center[1], near])
     return SunFit(rotation, origin, texel * resolution / 2.0, far - near, resolution)
+
+
+def sun_fit_over_both(kept: SunFit, needed: SunFit) -> SunFit | None:
+    """Return a sun's map holding both fits' regions, if it can stand in for ``needed``.
+
+    For a fit that must change because casters moved (the camera did not): an
+    actor swaying at the edge of the fit would otherwise change it, and redraw
+    the whole map, at every frame; the map over both stays while it sways
+    (:mod:`pvshadows.techniques.still_casters`). Its texels are at most twice
+    ``needed``'s, as :meth:`SunFit.covers` allows a moving camera.
+
+    Parameters
+    ----------
+    kept : SunFit
+        The fit the map holds.
+    needed : SunFit
+        The fit this frame asks for, along the same light at the same resolution.
+
+    Returns
+    -------
+    SunFit or None
+        The fit over both regions; ``None`` when the lights or resolutions
+        differ, or when it would be more than twice as coarse as ``needed``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.fitting import SunFit, sun_fit_over_both
+    >>> here = SunFit(np.eye(4), np.zeros(3), 1.0, 2.0, 1024)
+    >>> there = SunFit(np.eye(4), np.array([0.1, 0.0, 0.0]), 1.0, 2.0, 1024)
+    >>> both = sun_fit_over_both(here, there)
+    >>> both.covers(here) and both.covers(there)
+    True
+    >>> sun_fit_over_both(here, SunFit(np.eye(4), np.array([5.0, 0, 0]), 1.0, 2.0, 1024)) is None
+    True
+    """
+    if kept.resolution != needed.resolution or not np.array_equal(kept.rotation, needed.rotation):
+        return None
+    inner = 1.0 - 2.0 * MARGIN_TEXELS / kept.resolution  # the region within the margins
+    los, his, nears, fars = [], [], [], []
+    for fit in (kept, needed):
+        x, y, z = fit.near_center
+        half = fit.half_width * inner
+        los.append((x - half, y - half))
+        his.append((x + half, y + half))
+        nears.append(z)
+        fars.append(z + fit.depth)
+    both = _fit_around(
+        kept.rotation, np.min(los, axis=0), np.max(his, axis=0), min(nears), max(fars),
+        kept.resolution,
+    )  # fmt: skip
+    if not (both.covers(kept) and both.covers(needed)):
+        return None
+    return both

@@ -33,6 +33,7 @@ from pvshadows.scene.fitting import (
     spot_shadowing_rows,
     sun_actors,
     sun_fit,
+    sun_fit_over_both,
     sun_rotation,
 )
 from pvshadows.scene.lights import LightKind
@@ -59,6 +60,8 @@ class MapState(LightState):
     frame: int = -1
     drawn: bool = False
     fit: SunFit | None = None
+    #: The light, resolution and camera a sun's map's fit was last chosen for.
+    fit_view: tuple | None = None
     world_to_light: np.ndarray | None = None
     light_to_clip: np.ndarray | None = None
     params: tuple = ()
@@ -211,6 +214,10 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             return [PassReport("map depth", "skipped", "no caster can shadow a visible receiver")]
         if state.fit is not None and state.fit.covers(fit):
             fit = state.fit
+        elif state.fit is not None and state.fit_view == fit_key:
+            # Casters moved, not the camera: a fit over both regions stays while they sway.
+            fit = sun_fit_over_both(state.fit, fit) or fit
+        state.fit_view = fit_key
         if (
             state.planned is plan
             and state.planned_fit is fit
