@@ -647,8 +647,9 @@ def sun_fit_over_both(kept: SunFit, needed: SunFit) -> SunFit | None:
     For a fit that must change because casters moved (the camera did not): an
     actor swaying at the edge of the fit would otherwise change it, and redraw
     the whole map, at every frame; the map over both stays while it sways
-    (:mod:`pvshadows.techniques.still_casters`). Its texels are at most twice
-    ``needed``'s, as :meth:`SunFit.covers` allows a moving camera.
+    (:mod:`pvshadows.techniques.still_casters`). Its texels are at most one
+    size step (``2 ** (1 / SIZE_STEPS_PER_OCTAVE)``) larger than ``needed``'s:
+    an actor moved farther is fitted afresh.
 
     Parameters
     ----------
@@ -661,18 +662,21 @@ def sun_fit_over_both(kept: SunFit, needed: SunFit) -> SunFit | None:
     -------
     SunFit or None
         The fit over both regions; ``None`` when the lights or resolutions
-        differ, or when it would be more than twice as coarse as ``needed``.
+        differ, or when it would be more than one size step coarser than
+        ``needed``.
 
     Examples
     --------
     >>> import numpy as np
     >>> from pvshadows.scene.fitting import SunFit, sun_fit_over_both
-    >>> here = SunFit(np.eye(4), np.zeros(3), 1.0, 2.0, 1024)
-    >>> there = SunFit(np.eye(4), np.array([0.1, 0.0, 0.0]), 1.0, 2.0, 1024)
+    >>> half = 1024 / 1020  # a 2-wide region and 2 texels of margin each side
+    >>> here = SunFit(np.eye(4), np.zeros(3), half, 2.0, 1024)
+    >>> there = SunFit(np.eye(4), np.array([0.1, 0.0, 0.0]), half, 2.0, 1024)
     >>> both = sun_fit_over_both(here, there)
-    >>> both.covers(here) and both.covers(there)
-    True
-    >>> sun_fit_over_both(here, SunFit(np.eye(4), np.array([5.0, 0, 0]), 1.0, 2.0, 1024)) is None
+    >>> both.covers(here), both.covers(there), round(both.half_width / half, 3)
+    (True, True, 1.091)
+    >>> far = SunFit(np.eye(4), np.array([0.5, 0.0, 0.0]), half, 2.0, 1024)
+    >>> sun_fit_over_both(here, far) is None  # more than one size step coarser
     True
     """
     if kept.resolution != needed.resolution or not np.array_equal(kept.rotation, needed.rotation):
@@ -690,6 +694,9 @@ def sun_fit_over_both(kept: SunFit, needed: SunFit) -> SunFit | None:
         kept.rotation, np.min(los, axis=0), np.max(his, axis=0), min(nears), max(fars),
         kept.resolution,
     )  # fmt: skip
+    one_step = 2.0 ** (1.0 / SIZE_STEPS_PER_OCTAVE) * (1.0 + 1e-9)
+    if both.half_width > one_step * needed.half_width:
+        return None
     if not (both.covers(kept) and both.covers(needed)):
         return None
     return both
