@@ -5,6 +5,7 @@ import pytest
 import pyvista as pv
 
 from conftest import draw
+from pvshadows.gl.binding import opengl_for
 from pvshadows.techniques import still_casters
 from pvshadows.tools.overhead import OverheadScene, build_scene
 from pvshadows.tools.scenes import standard_scene
@@ -162,3 +163,31 @@ def test_a_small_actor_beside_a_big_static_mesh_is_drawn_without_it(monkeypatch)
         assert np.array_equal(draw(shown), draw(full))
         counts.append(technique.casters_drawn - before)
     assert counts == [3, 3, 1, 1]
+
+
+@pytest.mark.parametrize("light", ["point", "spot"])
+def test_a_still_map_is_released_with_its_light_state(light, monkeypatch):
+    monkeypatch.undo()
+    pl, lights, moved = build_scene(OverheadScene("actors", light, actors=50), (160, 120))
+    pl.shadows.enable(lights=lights)
+    draw(pl)
+    technique = pl.shadows._renderers[0]._techniques["cubemap" if light == "point" else "map"]
+    gl = opengl_for(pl.ren_win)
+
+    def still_map_after_sway():
+        for _ in range(4):
+            sway(moved, 1e-3)
+            draw(pl)
+        (state,) = technique._states.values()
+        handle = state.still._map.handle
+        assert gl.glIsTexture(handle)
+        return state.still, handle
+
+    still, handle = still_map_after_sway()
+    pl.shadows.configure(lights[0], resolution=512)  # a new map, a new light state
+    draw(pl)
+    assert still._map is None  # released (its name may serve the new map already)
+    still, handle = still_map_after_sway()
+    pl.shadows.disable()
+    pl.ren_win.MakeCurrent()
+    assert still._map is None and not gl.glIsTexture(handle)
