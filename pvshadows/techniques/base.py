@@ -63,6 +63,13 @@ class FrameContext:
         return render_target(self.renderer)
 
 
+class Releasable(Protocol):
+    """Something holding GPU resources: a pass's programs, a map's texture."""
+
+    def release(self) -> None:
+        """Release them."""
+
+
 #: The kind of cast a technique draws (a volume technique needs a :class:`VolumeCast`).
 CastT = TypeVar("CastT", bound=Cast, contravariant=True)
 

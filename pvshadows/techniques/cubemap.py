@@ -40,8 +40,8 @@ from pvshadows.scene.measures import CasterMeasureCache
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
-from pvshadows.techniques.per_light import LightState, PerLightMaps, caster_draws
-from pvshadows.techniques.still_casters import StillCasters, depth_steps
+from pvshadows.techniques.per_light import LightState, PerLightMaps
+from pvshadows.techniques.still_casters import StillCasters
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -233,8 +233,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
                 state.release()
             resolution = settings.resolution
             state = CubeState(self._new_cube(resolution, context, own))
-            if self._still_maps:
-                state.still = StillCasters(lambda: DepthCube(self._window, resolution))
+            state.still = self._still_casters(lambda: DepthCube(self._window, resolution))
             self._states[plan.key] = state
         if state.planned is plan and state.key is not None and state.companion is None:
             reused = f"light and casters unchanged since frame {state.frame}: map still right"
@@ -265,11 +264,10 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             return [PassReport("cube depth", "reused", reused), *companion]
         assert self._pass is not None
         reports = []
-        for step in depth_steps(state.still, key[:-1], opaque, key[-1], state.cube):
-            self.casters_drawn += len(step.casters)
-            drawn = caster_draws(
-                step.casters, translation(-position), snapshot, context.buffers, settings
-            )
+        steps = self._drawn_steps(
+            state.still, key, opaque, state.cube, translation(-position), context, settings
+        )
+        for step, drawn in steps:
             masks = snapshot.for_casters(measures.faces, step.casters)
             reports += step.named(
                 self._pass.render(

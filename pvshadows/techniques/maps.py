@@ -41,8 +41,8 @@ from pvshadows.scene.measures import CasterMeasureCache
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
-from pvshadows.techniques.per_light import LightState, PerLightMaps, caster_draws
-from pvshadows.techniques.still_casters import StillCasters, depth_steps
+from pvshadows.techniques.per_light import LightState, PerLightMaps
+from pvshadows.techniques.still_casters import StillCasters
 from pvshadows.techniques.translucent import (
     Companion,
     Companions,
@@ -119,8 +119,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
                 state.release()
             resolution = plan.settings.resolution
             state = MapState(DepthMap(self._window, resolution))
-            if self._still_maps:
-                state.still = StillCasters(lambda: DepthMap(self._window, resolution))
+            state.still = self._still_casters(lambda: DepthMap(self._window, resolution))
             self._states[key] = state
         return state
 
@@ -275,11 +274,10 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         assert self._pass is not None and state.light_to_clip is not None
         assert state.world_to_light is not None  # set with the fit, before any draw
         reports = []
-        for step in depth_steps(state.still, key[:-1], opaque, key[-1], state.depth):
-            self.casters_drawn += len(step.casters)
-            drawn = caster_draws(
-                step.casters, state.world_to_light, context.snapshot, context.buffers, settings
-            )
+        steps = self._drawn_steps(
+            state.still, key, opaque, state.depth, state.world_to_light, context, settings
+        )
+        for step, drawn in steps:
             if step.under is not None:
                 moving = len(step.casters)
                 detail = f"{moving} moving caster{'s' * (moving != 1)} over the still ones' depth"

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from typing import ClassVar, Generic, Protocol, TypeVar
+from collections.abc import Callable, Iterator
+from typing import ClassVar, Generic, TypeVar
 
 import numpy as np
 
@@ -18,8 +19,9 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.snapshot import ActorState, Snapshot
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
+from pvshadows.techniques.base import FrameContext, Releasable
 from pvshadows.techniques.filtering import FilterBindings, lookup_shading
-from pvshadows.techniques.still_casters import StillCasters
+from pvshadows.techniques.still_casters import DepthStep, MapT, StillCasters, TargetT, depth_steps
 from pvshadows.techniques.translucent import Companion
 
 
@@ -51,13 +53,6 @@ class LightState(ABC):
         if self.companion is not None:
             self.companion.release()
             self.companion = None
-
-
-class Releasable(Protocol):
-    """A pass holding GPU resources."""
-
-    def release(self) -> None:
-        """Release them."""
 
 
 StateT = TypeVar("StateT", bound=LightState)
@@ -130,6 +125,31 @@ class PerLightMaps(Generic[StateT, PassT]):
         self._still_maps = image_copies_supported(opengl_for(window))
         #: Casters handed to the depth passes since this object was made.
         self.casters_drawn = 0
+
+    def _still_casters(self, make_map: Callable[[], MapT]) -> StillCasters[MapT] | None:
+        """Return a new light's :class:`StillCasters`, ``None`` where maps cannot be copied."""
+        return StillCasters(make_map) if self._still_maps else None
+
+    def _drawn_steps(
+        self,
+        still: StillCasters[MapT] | None,
+        key: tuple,
+        casters: list[ActorState],
+        target: TargetT,
+        world_to_light: np.ndarray,
+        context: FrameContext,
+        settings: ShadowSettings,
+    ) -> Iterator[tuple[DepthStep[TargetT, MapT], CasterDraws]]:
+        """Yield each depth pass of a redraw into ``target`` with what it draws.
+
+        ``key`` is the map's key, its casters' keys last (:func:`depth_steps`
+        compares the rest as the view); the casters drawn are counted in
+        :attr:`casters_drawn`.
+        """
+        for step in depth_steps(still, key[:-1], casters, key[-1], target):
+            self.casters_drawn += len(step.casters)
+            snapshot, buffers = context.snapshot, context.buffers
+            yield step, caster_draws(step.casters, world_to_light, snapshot, buffers, settings)
 
     def _lookup_shading(
         self,

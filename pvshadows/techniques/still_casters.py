@@ -22,10 +22,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from itertools import compress
 from operator import is_not
-from typing import Generic, Protocol, TypeVar
+from typing import Generic, TypeVar
 
 from pvshadows.model.report import PassReport
 from pvshadows.scene.snapshot import ActorState
+from pvshadows.techniques.base import Releasable
 
 #: The largest share of a light's casters drawn over the still map; more and
 #: every caster is drawn (the still map would save little).
@@ -34,13 +35,6 @@ MOST_MOVING = 0.5
 #: are drawn again at each redraw: a few draws of little cost less than the copy
 #: of a whole map (a 2048-texel cube is 96 MiB of depth).
 STILL_CASTERS, STILL_TRIANGLES = 16, 100_000
-
-
-class Releasable(Protocol):
-    """A texture that holds GPU memory."""
-
-    def release(self) -> None:
-        """Release it."""
 
 
 MapT = TypeVar("MapT", bound=Releasable)
