@@ -213,13 +213,17 @@ class CasterBatch:
             return
         gl = raw_calls()
         chunk = self.chunk
-        columns = np.zeros((len(self), 4, 4), dtype=np.float32)
-        columns[rows] = model_to_light.transpose(0, 2, 1)
+        in_order = len(rows) < 2 or not bool((rows[1:] < rows[:-1]).any())
+        if in_order and len(rows) == len(self):  # every row: no gaps to fill
+            columns = np.ascontiguousarray(model_to_light.transpose(0, 2, 1), dtype=np.float32)
+        else:
+            columns = np.zeros((len(self), 4, 4), dtype=np.float32)
+            columns[rows] = model_to_light.transpose(0, 2, 1)
         if any(culls):
             sides = np.array([_SIDE_NAMES.index(c) for c in culls], dtype=np.int8)
         else:
             sides = np.zeros(len(rows), dtype=np.int8)
-        if len(rows) > 1 and bool((rows[1:] < rows[:-1]).any()):
+        if not in_order:
             order = np.argsort(rows, kind="stable")
             rows, sides = rows[order], sides[order]
         matrices = program.FindUniform("modelToLights")

@@ -93,6 +93,7 @@ class FrameBlock:
         self._bind, self._send, self._bind_base = glBindBuffer, glBufferData, glBindBufferBase
         self._buffer = int(gl.glGenBuffers(1))
         self._data = np.zeros(0, dtype=np.float32)
+        self._probe = self._data.view(np.int32)
         self._pointer = ctypes.c_void_p(0)
         self._sent = b""
         self.uploads = 0
@@ -139,10 +140,11 @@ class FrameBlock:
         data = self._data
         if data.size < size:
             data = self._data = np.zeros(size, dtype=np.float32)
+            self._probe = data[:1].view(np.int32)
             self._pointer = ctypes.c_void_p(data.ctypes.data)  # read once: a ctypes view per read
         else:
-            data[:] = 0.0
-        data[:1].view(np.int32)[0] = probe
+            data.fill(0.0)
+        self._probe[0] = probe
         data[4:HEADER_FLOATS] = viewport
         block = data[HEADER_FLOATS:].reshape(-1, ENTRY_FLOATS)
         # GLSL reads matrices by columns: each stored matrix is the transpose

@@ -382,8 +382,16 @@ class SunFit:
 
 
 def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    rotated = box_corners_along(box_offsets(boxes, np.zeros(3)), rotation[:3, :3])
-    return np.stack([rotated.min(axis=1).T, rotated.max(axis=1).T], axis=1)
+    """Return the bounds in light axes of ``(n, 2, 3)`` world boxes.
+
+    A turned box's centre is the turned centre, and its half-size along each
+    new axis is the old half-sizes weighted by the absolute rotation: no
+    corner is made.
+    """
+    turn = rotation[:3, :3]
+    center = ((boxes[:, 0] + boxes[:, 1]) * 0.5) @ turn.T
+    half = ((boxes[:, 1] - boxes[:, 0]) * 0.5) @ np.abs(turn).T
+    return np.stack([center - half, center + half], axis=1)
 
 
 #: The corners of clip space's cube, homogeneous.

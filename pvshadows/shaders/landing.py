@@ -5,7 +5,8 @@ VTK generated does nothing, silently: a VTK version that words its lighting
 code differently would leave receivers unshadowed without a sign. So the
 program VTK draws a receiver with after each change of its edits (its
 mapper's ``UpdateShaderEvent`` hands it over) is read once, and each edit is
-looked for in its fragment source; then the receiver costs no call per
+looked for in its fragment source (once between the receivers VTK draws
+with the same program and edits); then the receiver costs no call per
 frame.
 An edit counts as required unless the variant legitimately lacks its place:
 a light's hooks only where VTK's code shades with that light, the facet normal
@@ -37,6 +38,11 @@ _HOOK = re.compile(r"^(?:diffuse \+= \(df|specular \+= \(sf|radiance =) \*? ?lig
 OPTIONAL = ("vec4 vertexVC = vertexVCVSOutput;",)
 #: What VTK's mapper reports when a program does not compile.
 COMPILE_FAILED = "Could not set shader program"
+#: The edits missing from each program read, by its hash and the edits: receivers
+#: drawn with the same program and edits (VTK shares programs between actors) read
+#: its source once between them. Kept up to ``_VERDICTS_KEPT`` entries.
+_VERDICTS: dict[tuple[str, tuple[tuple[str, str], ...]], tuple[str, ...]] = {}
+_VERDICTS_KEPT = 256
 
 
 def _uses_light(source: str, index: int) -> bool:
@@ -204,7 +210,15 @@ class LandingCheck:
             return
         self._seen.add(key)
         self.checked += 1
-        missing = missing_edits(self._edits, program.GetFragmentShader().GetSource())
+        verdict_key = (key, tuple(self._edits))
+        verdict = _VERDICTS.get(verdict_key)
+        if verdict is None:
+            source = program.GetFragmentShader().GetSource()
+            verdict = tuple(missing_edits(self._edits, source))
+            if len(_VERDICTS) >= _VERDICTS_KEPT:
+                _VERDICTS.clear()
+            _VERDICTS[verdict_key] = verdict
+        missing = list(verdict)
         if missing != self.missing:
             self.missing = missing
             self._changed()

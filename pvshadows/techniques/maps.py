@@ -11,6 +11,7 @@ casters; translucent ones go to its transmittance companion
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -233,8 +234,11 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             kept = state.casters_of = (fit, actors, seen_by_sun.casters_in(fit, context.snapshot))
         drawn = kept[2]
         state.world_to_light = fit.world_to_light()
-        state.light_to_clip = np.diag([1.0 / fit.half_width, 1.0 / fit.half_width, 0.0, 1.0])
-        tangent = np.tan(np.radians(settings.light_size))
+        scale = 1.0 / fit.half_width
+        state.light_to_clip = np.array(
+            [[scale, 0.0, 0.0, 0.0], [0.0, scale, 0.0, 0.0], [0.0] * 4, [0.0, 0.0, 0.0, 1.0]]
+        )
+        tangent = math.tan(math.radians(settings.light_size))
         state.params = (fit.depth, fit.texel, fit.half_width, tangent)
         key = (pose.key(), settings.resolution, settings.cull_front, fit.key())
         detail = (
@@ -390,7 +394,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         if _kind(plan) == "spot":
             # A point light's map covers only its casters' cone; it lights beyond it.
             lit = plan.kind is LightKind.SPOT
-            cone = float(np.cos(np.radians(plan.pose.cone_angle))) if lit else -2.0
+            cone = math.cos(math.radians(plan.pose.cone_angle)) if lit else -2.0
             uniforms[f"pvsLightToClip{i}"] = state.light_to_clip
-            uniforms[f"pvsCone{i}"] = (*plan.pose.direction, cone)
+            uniforms[f"pvsCone{i}"] = (*plan.pose.direction.tolist(), cone)
         return uniforms

@@ -91,14 +91,18 @@ def caster_draws(
     every = buffers.of_casters(snapshot)
     rows = None if casters is snapshot.casters else snapshot.caster_rows(casters).tolist()
     drawn = every if rows is None else [every[row] for row in rows]
-    models = snapshot.caster_models if rows is None else snapshot.caster_models[rows]
+    columns = snapshot.caster_model_columns
+    if rows is not None:
+        columns = columns[rows]
+    # Every caster's world_to_light @ model, transposed, in one product of 2-D arrays.
+    transposed = (columns.reshape(-1, 4) @ world_to_light.T).reshape(-1, 4, 4)
     culls: list[str | None] = [None] * len(casters)
     if settings.cull_front:  # only then: finding whether a caster is closed reads its triangles
         sides = snapshot.caster_sides
         culls = sides if rows is None else [sides[row] for row in rows]
     batch = buffers.batch_of(snapshot)
     in_batch = None if batch is None else batch.rows if rows is None else batch.rows[rows]
-    return CasterDraws(drawn, world_to_light @ models, culls, batch, in_batch)
+    return CasterDraws(drawn, transposed.transpose(0, 2, 1), culls, batch, in_batch)
 
 
 class PerLightMaps(Generic[StateT, PassT]):
