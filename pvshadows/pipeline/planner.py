@@ -48,7 +48,7 @@ from pvshadows.scene.lights import (
     pose_time,
 )
 from pvshadows.scene.planes import PlaneChoice, choose_plane, sole_plane
-from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.snapshot import RECEIVERS, ActorState, Snapshot
 from pvshadows.scene.view import FrameView
 
 #: A point light's casters within a cone of this half angle (degrees) get a map of that cone.
@@ -135,14 +135,19 @@ class PlanMemo:
     def in_view(self, snapshot: Snapshot, view: FrameView) -> ViewSight:
         """Return what the view sees of the snapshot's receivers (new when either changed).
 
-        Last frame's witnesses answer first (:class:`ViewSight`).
+        Last frame's witnesses answer first (:class:`ViewSight`); a snapshot
+        that follows last frame's, seen from the same view, tests again only
+        its replaced receivers (:meth:`ViewSight.following`).
         """
         kept = self._in_view
         if kept is None or kept[0] is not snapshot or kept[1] is not view:
             self._tested += 0 if kept is None else kept[2].tested
-            sight = ViewSight(
-                snapshot.receiver_bounds, snapshot.receivers_box, view.planes, self._witnesses
-            )
+            bounds, whole = snapshot.receiver_bounds, snapshot.receivers_box
+            if kept is not None and kept[1] is view and snapshot.parent is kept[0]:
+                rows = [row for row, _ in snapshot.patches(RECEIVERS)]
+                sight = kept[2].following(bounds, whole, rows)
+            else:
+                sight = ViewSight(bounds, whole, view.planes, self._witnesses)
             kept = (snapshot, view, sight)
             self._in_view = kept
         return kept[2]

@@ -67,6 +67,34 @@ class ViewSight:
         self._every = np.ones(len(bounds), dtype=bool) if inside else None
         self.tested = 0
 
+    def following(self, bounds: np.ndarray, whole: np.ndarray, rows: list[int]) -> ViewSight:
+        """Return the sight of the same view over receivers of which only some rows changed.
+
+        What this sight found of every receiver is kept; only the boxes in
+        ``rows`` are tested again.
+
+        Parameters
+        ----------
+        bounds : numpy.ndarray
+            ``(n, 2, 3)`` the receivers' world bounds now, ``n`` as before.
+        whole : numpy.ndarray
+            ``(2, 3)`` the box round them all.
+        rows : list of int
+            The receivers whose bounds changed.
+
+        Returns
+        -------
+        ViewSight
+            A new sight sharing this one's witnesses.
+        """
+        sight = ViewSight(bounds, whole, self._planes, self._witnesses)
+        if sight._every is None and self._every is not None:
+            every = self._every.copy()
+            every[rows] = boxes_in_frustum(bounds[rows], self._planes)
+            sight._every = every
+            sight.tested += len(rows)
+        return sight
+
     def _box_seen(self, low: list[float], high: list[float]) -> bool:
         """:func:`~pvshadows.scene.culling.boxes_in_frustum` for one box, in plain floats.
 

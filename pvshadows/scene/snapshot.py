@@ -19,6 +19,8 @@ import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
+from itertools import count
+from typing import Any
 
 import numpy as np
 
@@ -68,6 +70,10 @@ class ActorState:
         styles, between whose lines or points the camera sees what lies
         behind (unless the renderer's hidden-line removal hides it). Its
         triangles cast all the same.
+    serial : int
+        A number no other state of the process has: equal serials, the same
+        state (compared in bulk where comparing states one by one would
+        cost a call each).
     """
 
     actor: vtk.vtkActor
@@ -80,6 +86,7 @@ class ActorState:
     plane: bool = False
     transmittance: float = 0.0
     faces_drawn: bool = True
+    serial: int = field(default_factory=count().__next__, init=False, repr=False, compare=False)
 
     @cached_property
     def name(self) -> str:
@@ -178,8 +185,11 @@ class Snapshot:
     A snapshot in which only some actors' states changed, their roles kept,
     follows the last one (:meth:`successor`): what it derives from its
     actors (role lists, stacked bounds and matrices) is last frame's,
-    copied and patched in the changed rows, so it costs the actors that
-    changed rather than every actor.
+    patched in the changed rows, so it costs the actors that changed rather
+    than every actor. The role lists are copied (plans keep them); the
+    stacked arrays, per-caster lists and row maps are taken over from the
+    parent and patched in place (the parent derives them afresh if it is
+    asked again).
 
     Attributes
     ----------
@@ -227,6 +237,15 @@ class Snapshot:
         parent = self.parent
         return None if parent is None else parent.__dict__.get(name)
 
+    def _taken(self, name: str) -> Any:
+        """Take over what the parent derived as ``name``, to patch it in place (else ``None``).
+
+        The parent lets it go: asked again, it derives it afresh from its
+        own actors, so what it answers stays right.
+        """
+        parent = self.parent
+        return None if parent is None else parent.__dict__.pop(name, None)
+
     @cached_property
     def _role_rows(self) -> tuple[np.ndarray, np.ndarray]:
         """Each actor's row in :attr:`casters` and in :attr:`receivers` (-1 when not one)."""
@@ -239,25 +258,37 @@ class Snapshot:
 
     @cached_property
     def caster_index(self) -> np.ndarray:
-        """Rows of :attr:`actors` that are :attr:`casters`, in order."""
-        return np.flatnonzero(self._role_rows[CASTERS] >= 0)
+        """Rows of :attr:`actors` that are :attr:`casters`, in order (read-only)."""
+        return self._role_index("caster_index", CASTERS)
+
+    def _role_index(self, name: str, role: int) -> np.ndarray:
+        kept = self._inherited(name)
+        if kept is not None:
+            return kept  # type: ignore[return-value]  # roles are the parent's
+        index = np.flatnonzero(self._role_rows[role] >= 0)
+        index.setflags(write=False)
+        return index
 
     @cached_property
     def every_receiver(self) -> np.ndarray:
         """``(n,)`` read-only, true for each of :attr:`receivers`.
 
         What a light that reaches every actor reaches of them: one array per
-        snapshot, so that what the camera saw of it last frame answers first
+        snapshot and those that follow it (their roles are its), so that
+        what the camera saw of it last frame answers first
         (:class:`pvshadows.pipeline.sight.ViewSight`).
         """
+        kept = self._inherited("every_receiver")
+        if kept is not None:
+            return kept  # type: ignore[return-value]
         every = np.ones(len(self.receivers), dtype=bool)
         every.setflags(write=False)
         return every
 
     @cached_property
     def receiver_index(self) -> np.ndarray:
-        """Rows of :attr:`actors` that are :attr:`receivers`, in order."""
-        return np.flatnonzero(self._role_rows[RECEIVERS] >= 0)
+        """Rows of :attr:`actors` that are :attr:`receivers`, in order (read-only)."""
+        return self._role_index("receiver_index", RECEIVERS)
 
     def patches(self, role: int) -> list[tuple[int, ActorState]]:
         """Return the actors of a role replaced since :attr:`parent`.
@@ -307,11 +338,10 @@ class Snapshot:
         return self._caster_values("caster_keys", ActorState.key)
 
     def _caster_values(self, name: str, value) -> list:
-        """List ``value`` of the casters, or patch the parent's list in the changed rows."""
-        kept = self._inherited(name)
-        if kept is None:
+        """List ``value`` of the casters, or take the parent's list and patch the changed rows."""
+        values = self._taken(name)
+        if values is None:
             return [value(c) for c in self.casters]
-        values = list(kept)  # type: ignore[call-overload]
         for row, state in self.patches(CASTERS):
             values[row] = value(state)
         return values
@@ -330,6 +360,13 @@ class Snapshot:
     def some_caster_translucent(self) -> bool:
         """Whether some caster lets light through (:attr:`ActorState.transmittance` above 0)."""
         return bool(self.caster_transmittance.any())
+
+    @cached_property
+    def caster_serials(self) -> np.ndarray:
+        """:attr:`ActorState.serial` of :attr:`casters`, ``(n,)`` int64."""
+        return self._stacked("caster_serials", CASTERS, lambda s: s.serial, ()).astype(
+            np.int64, copy=False
+        )
 
     @cached_property
     def caster_triangles(self) -> np.ndarray:
@@ -384,15 +421,15 @@ class Snapshot:
         if heights is not None:
             return heights
         kept = self._inherited("_heights_by_sheet")
-        kept_heights = kept.get(id(state)) if isinstance(kept, dict) else None
+        kept_heights = kept.pop(id(state), None) if isinstance(kept, dict) else None
         if kept_heights is None:
             low, high = _extents_along(self.receiver_bounds, sheet.normal)
             row = self._receiver_rows.get(id(state))
             if row is not None:
                 low[row], high[row] = np.inf, -np.inf
-        else:
+        else:  # taken over from the parent, patched in place
             rows = [row for row, _ in self.patches(RECEIVERS)]
-            low, high = kept_heights[0].copy(), kept_heights[1].copy()
+            low, high = kept_heights
             low[rows], high[rows] = _extents_along(self.receiver_bounds[rows], sheet.normal)
         heights = self._heights_by_sheet[id(state)] = (low, high)
         return heights
@@ -450,11 +487,13 @@ class Snapshot:
         few plain floats per moved actor instead of a pass over every actor.
         """
         bounds = getattr(self, bounds_name)
-        kept, before = self._inherited(name), self._inherited(bounds_name)
+        kept, parent = self._inherited(name), self.parent
         rows = [row for row, _ in self.patches(role)]
-        if not (isinstance(kept, np.ndarray) and isinstance(before, np.ndarray) and rows):
+        if not (isinstance(kept, np.ndarray) and parent is not None and rows):
             return box_around(bounds)
-        (low, high), olds, news = kept.tolist(), before[rows].tolist(), bounds[rows].tolist()
+        before = (parent.casters, parent.receivers, parent.actors)[role]
+        olds = [before[row].bounds.tolist() for row in rows]
+        (low, high), news = kept.tolist(), bounds[rows].tolist()
         for (old_low, old_high), (new_low, new_high) in zip(olds, news, strict=True):
             for axis in range(3):
                 if old_low[axis] <= low[axis] < new_low[axis]:
@@ -479,12 +518,11 @@ class Snapshot:
         return self._stacked("caster_model_columns", CASTERS, _model_columns, (4, 4))
 
     def _stacked(self, name: str, role: int, value, shape: tuple[int, ...]) -> np.ndarray:
-        """Stack ``value`` of a role's states, or patch the parent's stack in the changed rows."""
-        kept = self._inherited(name)
-        if kept is None:
+        """Stack ``value`` of a role's states, or patch the parent's stack (taken over)."""
+        stacked = self._taken(name)
+        if stacked is None:
             states = (self.casters, self.receivers, self.actors)[role]
             return np.array([value(s) for s in states]).reshape(-1, *shape)
-        stacked = kept.copy()  # type: ignore[attr-defined]
         for row, state in self.patches(role):
             stacked[row] = value(state)
         return stacked
@@ -498,12 +536,11 @@ class Snapshot:
         return self._rows_by_id("_receiver_rows", RECEIVERS)
 
     def _rows_by_id(self, name: str, role: int) -> dict[int, int]:
-        """Map ``id(state)`` to its row in a role's list, or patch the parent's map."""
+        """Map ``id(state)`` to its row in a role's list, or take the parent's map and patch it."""
         states = (self.casters, self.receivers)[role]
-        kept = self._inherited(name)
-        if kept is None:
+        rows = self._taken(name)
+        if rows is None:
             return {id(state): row for row, state in enumerate(states)}
-        rows = dict(kept)  # type: ignore[call-overload]
         parent = self.parent
         assert parent is not None  # kept comes from it
         before = (parent.casters, parent.receivers)[role]
@@ -821,7 +858,9 @@ class SceneReader:
         else:
             entries, changed = self._compare_suspects(cache, camera, suspects, renewed)
         cache.camera, cache.roles = camera, self.roles
-        if not changed and entries.keys() == cache.entries.keys() and cache.snapshot:
+        # The suspects' entries are patched in place, under the same keys.
+        same_actors = suspects is not None or entries.keys() == cache.entries.keys()
+        if not changed and same_actors and cache.snapshot:
             return cache.snapshot
         self.reread += len(changed)
         following = self._successor(cache, renewed, frozenset(changed)) if renewed else None
@@ -895,10 +934,11 @@ class SceneReader:
         """Compare the stamps of the actors VTK modified; read and watch again those that changed.
 
         The actor list is last frame's, so every other entry stays as it is:
-        the work is in the suspects alone. Each changed actor's old and new
-        entries are added to ``renewed``.
+        the work is in the suspects alone, and the entries are replaced in
+        place. Each changed actor's old and new entries are added to
+        ``renewed``.
         """
-        entries = dict(cache.entries)
+        entries = cache.entries
         changed = []
         self.compared += len(suspects)
         for index in sorted(suspects):

@@ -253,16 +253,19 @@ class WaitingChecks:
     receiver edited before then has no program to watch. VTK draws only what
     the view's frustum meets: a receiver is tried again only once the view
     meets its bounds, all found in one test over the waiting receivers'
-    bounds (stacked once while the same receivers wait), and not at all
-    while the view and the waiting receivers stay as they were when none
-    was in view. So a frame costs the waiting receivers in view, not every
-    receiver never drawn (a zoomed-in view of a large assembly leaves most
-    of it undrawn for as long as it stays so).
+    bounds (stacked once while the same receivers wait). While the view
+    stays the one of the last try, only the receivers that came to wait
+    since, or were tried then and wait still, are tested: the others were
+    out of it. So a frame costs the waiting receivers in view and those
+    just edited, not every receiver never drawn (a zoomed-in view of a
+    large assembly leaves most of it undrawn for as long as it stays so).
 
     Attributes
     ----------
     tries : int
         Checks tried since this object was made.
+    tested : int
+        Waiting receivers' bounds tested against a view since then.
 
     Examples
     --------
@@ -295,9 +298,11 @@ class WaitingChecks:
         self._waiting: dict[str, tuple[LandingCheck, np.ndarray | None]] = {}
         #: The waiting keys without bounds, those with, their rows and their bounds stacked.
         self._stack: tuple[list[str], list[str], dict[str, int], np.ndarray] | None = None
-        #: The planes of the last try, when none of the waiting receivers was in view.
-        self._quiet_view: np.ndarray | None = None
-        self.tries = 0
+        #: The planes of the last try: every waiting receiver not in ``_untested`` is out of them.
+        self._tried_view: np.ndarray | None = None
+        #: Waiting receivers to test even in the last try's view (new, moved, or in it then).
+        self._untested: set[str] = set()
+        self.tries = self.tested = 0
 
     def __len__(self) -> int:
         return len(self._waiting)
@@ -319,7 +324,7 @@ class WaitingChecks:
         """
         kept = self._waiting.get(key)
         self._waiting[key] = (check, bounds)
-        self._quiet_view = None
+        self._untested.add(key)
         stack = self._stack
         if stack is None or kept is None or (kept[1] is None) != (bounds is None):
             self._stack = None
@@ -336,6 +341,7 @@ class WaitingChecks:
         """
         if self._waiting.pop(key, None) is not None:
             self._stack = None
+            self._untested.discard(key)
 
     def try_in_view(self, planes: np.ndarray | None) -> None:
         """Attach the checks of the waiting receivers VTK may have drawn since.
@@ -345,23 +351,32 @@ class WaitingChecks:
         planes : numpy.ndarray or None
             ``(6, 4)`` the view's frustum planes; ``None`` tries every one.
         """
-        if not self._waiting or (planes is not None and planes is self._quiet_view):
+        same_view = planes is not None and planes is self._tried_view
+        if not self._waiting or (same_view and not self._untested):
             return
         if self._stack is None:
             unboxed = [key for key, (_, bounds) in self._waiting.items() if bounds is None]
             keys = [key for key, (_, bounds) in self._waiting.items() if bounds is not None]
             stacked = np.array([self._waiting[key][1] for key in keys]).reshape(-1, 2, 3)
             self._stack = (unboxed, keys, {key: row for row, key in enumerate(keys)}, stacked)
-        unboxed, keys, _, stacked = self._stack
+        unboxed, keys, rows, stacked = self._stack
         if planes is None:
             tried = unboxed + keys
+        elif same_view:  # the others were out of this view at the last try
+            candidates = sorted(rows[key] for key in self._untested if key in rows)
+            self.tested += len(candidates)
+            seen = boxes_in_frustum(stacked[candidates], planes).tolist()
+            boxed = [keys[row] for row, hit in zip(candidates, seen, strict=True) if hit]
+            tried = [key for key in unboxed if key in self._untested] + boxed
         else:
-            seen = np.flatnonzero(boxes_in_frustum(stacked, planes)).tolist()
-            tried = unboxed + [keys[row] for row in seen]
+            self.tested += len(keys)
+            seen_rows = np.flatnonzero(boxes_in_frustum(stacked, planes)).tolist()
+            tried = unboxed + [keys[row] for row in seen_rows]
         self.tries += len(tried)
         attached = [key for key in tried if self._waiting[key][0].attach()]
         for key in attached:
             del self._waiting[key]
         if attached:
             self._stack = None
-        self._quiet_view = planes if not tried else None
+        self._tried_view = planes
+        self._untested = (set(tried) | set(unboxed)) - set(attached)

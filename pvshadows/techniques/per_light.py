@@ -150,9 +150,10 @@ class PerLightMaps(Generic[StateT, PassT]):
         compares the rest as the view); the casters drawn are counted in
         :attr:`casters_drawn`.
         """
-        for step in depth_steps(still, key[:-1], casters, key[-1], target):
+        snapshot, buffers = context.snapshot, context.buffers
+        serials = snapshot.for_casters(snapshot.caster_serials, casters)
+        for step in depth_steps(still, key[:-1], casters, key[-1], serials, target):
             self.casters_drawn += len(step.casters)
-            snapshot, buffers = context.snapshot, context.buffers
             yield step, caster_draws(step.casters, world_to_light, snapshot, buffers, settings)
 
     def _lookup_shading(

@@ -20,9 +20,9 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from itertools import compress
-from operator import is_not
 from typing import Generic, TypeVar
+
+import numpy as np
 
 from pvshadows.model.report import PassReport
 from pvshadows.scene.snapshot import ActorState
@@ -94,13 +94,15 @@ class StillCasters(Generic[MapT]):
     Examples
     --------
     >>> from types import SimpleNamespace
+    >>> import numpy as np
     >>> from pvshadows.techniques.still_casters import StillCasters
     >>> mesh = SimpleNamespace(n_triangles=50_000)  # 3 still: worth a still map
     >>> casters = [SimpleNamespace(name=n, triangles=mesh) for n in "abcd"]
     >>> still = StillCasters(lambda: SimpleNamespace(name="still", release=lambda: None))
     >>> keys = [(n, 0) for n in "abcd"]
     >>> def redraw(view="light"):
-    ...     steps = still.steps(view, casters, tuple(keys), SimpleNamespace(name="map"))
+    ...     serials = np.array([hash(key) for key in keys])  # a new one for each new key
+    ...     steps = still.steps(view, casters, tuple(keys), serials, SimpleNamespace(name="map"))
     ...     return [(s.target.name, "".join(c.name for c in s.casters)) for s in steps]
     >>> redraw()  # a first draw: every caster
     [('map', 'abcd')]
@@ -122,6 +124,7 @@ class StillCasters(Generic[MapT]):
         self._map: MapT | None = None
         self._view: object = None
         self._keys: tuple = ()
+        self._serials = np.zeros(0, dtype=np.int64)
         #: Rows of the casters drawn over the still map (the others are in it).
         self._moving: set[int] = set()
         #: Rows that changed at the last redraw without being moving yet.
@@ -132,7 +135,12 @@ class StillCasters(Generic[MapT]):
         self._too_few = False
 
     def steps(
-        self, view: object, casters: list[ActorState], keys: tuple, target: TargetT
+        self,
+        view: object,
+        casters: list[ActorState],
+        keys: tuple,
+        serials: np.ndarray,
+        target: TargetT,
     ) -> list[DepthStep[TargetT, MapT]]:
         """Say how this redraw draws ``casters`` into the light's map ``target``.
 
@@ -146,6 +154,10 @@ class StillCasters(Generic[MapT]):
         keys : tuple
             Their :meth:`~pvshadows.scene.snapshot.ActorState.key`, in order
             (the actor's id first).
+        serials : numpy.ndarray
+            ``(n,)`` their :attr:`~pvshadows.scene.snapshot.ActorState.serial`:
+            the rows where it differs from the last redraw's are the only
+            ones whose keys are compared.
         target : texture
             The light's map.
 
@@ -157,13 +169,14 @@ class StillCasters(Generic[MapT]):
             ``target`` over it.
         """
         every: list[DepthStep[TargetT, MapT]] = [DepthStep(target, casters)]
-        last_view, last_keys = self._view, self._keys
-        self._view, self._keys = view, keys
+        last_view, last_keys, last_serials = self._view, self._keys, self._serials
+        # A copy: the snapshot patches its own array in place at later frames.
+        self._view, self._keys, self._serials = view, keys, serials.copy()
         if view != last_view or len(keys) != len(last_keys):
             self._start_afresh()
             return every
-        # A caster's key is the same object while its state is: compare the others only.
-        differ = list(compress(range(len(keys)), map(is_not, last_keys, keys)))
+        # A caster's state is the same while its serial is: compare the others' keys only.
+        differ = np.flatnonzero(serials != last_serials).tolist()
         if any(last_keys[row][0] != keys[row][0] for row in differ):  # another caster there
             self._start_afresh()
             return every
@@ -236,6 +249,7 @@ def depth_steps(
     view: object,
     casters: list[ActorState],
     keys: tuple,
+    serials: np.ndarray,
     target: TargetT,
 ) -> list[DepthStep[TargetT, MapT]]:
     """Return :meth:`StillCasters.steps`, or every caster into ``target`` without a still map.
@@ -244,7 +258,7 @@ def depth_steps(
     ----------
     still : StillCasters or None
         The light's, ``None`` where maps cannot be copied.
-    view, casters, keys, target
+    view, casters, keys, serials, target
         As for :meth:`StillCasters.steps`.
 
     Returns
@@ -254,4 +268,4 @@ def depth_steps(
     """
     if still is None:
         return [DepthStep(target, casters)]
-    return still.steps(view, casters, keys, target)
+    return still.steps(view, casters, keys, serials, target)
