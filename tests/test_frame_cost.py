@@ -671,3 +671,35 @@ def test_a_frame_says_the_cpu_time_of_pvshadows_own_code_the_passes_within_it():
     assert frame.cpu_ms == sum(own)
     assert own[0] > frame.pass_cpu_ms > 0.0  # the pass is part of the left one's frame
     assert own[1] > 0.0  # nothing to draw on the right, but the frame was still read
+
+
+def test_a_read_that_fails_half_way_leaves_the_next_read_right(monkeypatch):
+    """An error while reading the moved actors again (the first one read, the second
+    not) is not the end of them: the next read gives both where they are now."""
+    import numpy as np
+
+    from pvshadows.scene.snapshot import SceneReader
+
+    pl = pv.Plotter(off_screen=True)
+    first, second = pl.add_mesh(pv.Cube()), pl.add_mesh(pv.Sphere(center=(3, 0, 0)))
+    reader = SceneReader(lambda actor: "an actor")
+    reader.read(pl.renderer)
+    first.AddPosition(1.0, 0.0, 0.0)
+    second.AddPosition(0.0, 2.0, 0.0)
+    entry, reads = reader._entry, []
+
+    def fails_at_the_second(actor, camera):
+        reads.append(actor)
+        if len(reads) == 2:
+            raise RuntimeError("a VTK error while reading")
+        return entry(actor, camera)
+
+    monkeypatch.setattr(reader, "_entry", fails_at_the_second)
+    with pytest.raises(RuntimeError, match="a VTK error"):
+        reader.read(pl.renderer)
+    monkeypatch.setattr(reader, "_entry", entry)
+    snapshot = reader.read(pl.renderer)
+    placed = {vtk_id(state.actor): state.matrix[:3, 3].tolist() for state in snapshot.actors}
+    assert placed == {vtk_id(first): [1.0, 0.0, 0.0], vtk_id(second): [0.0, 2.0, 0.0]}
+    assert np.allclose(snapshot.casters_box, [[0.5, -0.5, -0.5], [3.5, 2.5, 0.5]], atol=0.01)
+    pl.close()

@@ -851,7 +851,21 @@ class SceneReader:
     def _read_changed(
         self, cache: _RendererCache, camera: int, suspects: set[int] | None
     ) -> Snapshot:
-        """Read again the actors that changed, among ``suspects`` (indices; ``None``: all)."""
+        """Read again the actors that changed, among ``suspects`` (indices; ``None``: all).
+
+        A read that raises leaves no snapshot behind: the suspects' entries
+        are replaced in place and VTK will not name them again, so the next
+        read compares every actor and builds its snapshot from the entries.
+        """
+        try:
+            return self._read_entries(cache, camera, suspects)
+        except Exception:
+            cache.snapshot = None
+            raise
+
+    def _read_entries(
+        self, cache: _RendererCache, camera: int, suspects: set[int] | None
+    ) -> Snapshot:
         renewed: list[tuple[_Entry, _Entry]] = []
         if suspects is None:
             entries, changed = self._compare_all(cache, camera)
