@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from pvshadows.pipeline.reach import COVER_DEGREES, cover_holds
 from pvshadows.scene.culling import boxes_in_spot
 from pvshadows.scene.lights import LightKind, LightPose
 
@@ -30,6 +31,61 @@ def test_a_box_holding_a_point_of_the_cone_is_never_culled(seed):
     kept = boxes_in_spot(boxes, pose)
     assert touches.sum() > 20 and (~touches).sum() > 20  # both kinds were drawn
     assert np.all(kept[touches])
+
+
+def _touching(boxes, pose, rng):
+    """Which boxes hold a point of the cone, among points spread over each box."""
+    t = rng.uniform(size=(len(boxes), 64, 3))
+    t[:, :8] = [[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    points = boxes[:, None, 0] + t * (boxes[:, None, 1] - boxes[:, None, 0])
+    away = points - pose.position
+    cosine = away @ pose.direction / np.linalg.norm(away, axis=2)
+    return np.any(cosine >= np.cos(np.radians(pose.cone_angle)), axis=1)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_what_a_cover_reaches_holds_for_every_light_it_holds(seed):
+    rng = np.random.default_rng(seed)
+    pose = _random_pose(rng)
+    back = float(rng.uniform(0.05, 0.5))
+    cover = LightPose(
+        LightKind.SPOT,
+        pose.position - back * pose.direction,
+        pose.direction,
+        min(pose.cone_angle + COVER_DEGREES, 89.9),
+    )
+    centres = pose.position + rng.normal(size=(400, 3)) * 3.0
+    halves = rng.uniform(0.05, 1.5, size=(400, 3))
+    boxes = np.stack([centres - halves, centres + halves], axis=1)
+    kept = boxes_in_spot(boxes, cover)
+    held = 0
+    for _ in range(100):
+        turned = pose.direction + rng.normal(size=3) * 0.008
+        moved = LightPose(
+            LightKind.SPOT,
+            pose.position + rng.normal(size=3) * 0.03,
+            turned / np.linalg.norm(turned),
+            pose.cone_angle,
+        )
+        if not cover_holds(cover, moved):
+            continue
+        held += 1
+        assert np.all(kept[_touching(boxes, moved, rng)])
+    assert held >= 20  # many moves stayed in the cover, and were checked
+
+
+def test_a_cover_holds_a_light_that_moved_forward_not_one_beside_or_turned_away():
+    cover = LightPose(LightKind.SPOT, np.array([0, 0, 1.0]), np.array([0, 0, -1.0]), 12.0)
+    down = np.array([0, 0, -1.0])
+    tilted = np.array([np.sin(np.radians(3)), 0, -np.cos(np.radians(3))])
+    poses = [
+        (np.array([0, 0, -5.0]), down),  # far forward along the axis
+        (np.array([0.2, 0, 0.0]), down),  # beside, within the cover's edge (tan 12° > 0.2)
+        (np.array([0.3, 0, 0.0]), down),  # beside, past it
+        (np.zeros(3), tilted),  # turned by more than the two degrees it has to spare
+    ]
+    held = [cover_holds(cover, LightPose(LightKind.SPOT, p, d, 10.0)) for p, d in poses]
+    assert held == [True, True, False, False]
 
 
 def test_boxes_behind_the_light_or_beside_a_narrow_cone_are_culled():

@@ -278,20 +278,36 @@ def test_a_moved_flat_actor_keeps_its_model_plane():
     assert moved.sheet.anchor[2] == pytest.approx(flat.sheet.anchor[2] + 0.25)
 
 
-def test_moving_the_light_tests_every_actor_once_and_runs_its_pass():
+def test_a_light_moved_a_little_tests_no_actor_and_runs_its_pass():
     pl, light = crowd()
-    actors = len(pl.shadows._renderers[0].snapshot.actors)
     before = counters(pl)
-    light.position = (0.01, 0.0, 20.0)
-    draw(pl)
+    for step in range(1, 4):
+        light.position = (0.01 * step, 0.0, 20.0)
+        draw(pl)
     counted = change(before, counters(pl))
     assert counted["reread"] == 0
-    assert counted["cone tests"] == actors
-    assert counted["fit measures"] == len(pl.shadows._renderers[0].snapshot.casters)
+    # The actors were tested against a cover wider than the cone, which still holds it.
+    assert counted["cone tests"] == 0
+    assert counted["fit measures"] == 3 * len(pl.shadows._renderers[0].snapshot.casters)
     assert counted["received"] == 0
     # Its far distance, fit and cone go to the frame's block: no receiver is given a uniform.
     assert counted["uniforms"] == 0
-    assert counted["block uploads"] == 1
+    assert counted["block uploads"] == 3
+    assert pl.shadows.last_frame.passes_run == 1
+
+
+@pytest.mark.parametrize(
+    ("position", "focal_point"),
+    [((3.0, 0.0, 20.0), (0.0, 0.0, 0.0)), ((0.0, 0.0, 20.0), (2.0, 0.0, 0.0))],
+    ids=["moved", "turned"],
+)
+def test_a_light_that_leaves_its_cover_tests_every_actor_once(position, focal_point):
+    pl, light = crowd()
+    actors = len(pl.shadows._renderers[0].snapshot.actors)
+    before = counters(pl)
+    light.position, light.focal_point = position, focal_point
+    draw(pl)
+    assert change(before, counters(pl))["cone tests"] == actors
     assert pl.shadows.last_frame.passes_run == 1
 
 

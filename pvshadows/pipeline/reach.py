@@ -1,19 +1,133 @@
 """Which actors each light reaches, kept between frames.
 
-A spot light reaches only the actors whose bounds touch its cone. The answer
-for an actor stays right while neither the light's pose nor the actor's
-state changed, so a frame whose snapshot follows the last one
+A spot light reaches only the actors whose bounds touch its cone. The actors
+are tested against a wider cone than the light's (its *cover*: a few degrees
+wider, its apex a little behind the light), so the answers stay right
+(conservative) while the light moves and turns a little: a light dragged or
+animated across frames tests its actors again only when its cone leaves the
+cover, not at every frame. The answer for an actor stays right while the
+cover holds the light's cone and the actor's state did not change, so a
+frame whose snapshot follows the last
 (:meth:`pvshadows.scene.snapshot.Snapshot.successor`) tests only the actors
-replaced in it, and a moved light tests every actor in one vectorised call.
+replaced in it, and a light that left its cover tests every actor in one
+vectorised call.
 """
 
 from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from pvshadows.scene.culling import boxes_in_spot
 from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.snapshot import Snapshot
+
+#: Degrees a spot light's cover is wider than its cone (never past 89.9).
+COVER_DEGREES = 1.0
+#: How far behind a spot light its cover's apex sits, as a fraction of the
+#: diagonal of the box round the actors.
+COVER_BACK = 0.01
+#: The widest cone :func:`pvshadows.scene.culling.boxes_in_spot` tests as it is.
+_WIDEST_DEGREES = 89.9
+
+
+@dataclass(frozen=True)
+class _Reached:
+    """A spot light's answers: the cover they were tested against, on which snapshot."""
+
+    cover: LightPose
+    snapshot: Snapshot
+    hits: np.ndarray
+    #: The last pose the cover was found to hold (the test is skipped for it).
+    pose_key: tuple
+
+
+def light_cover(pose: LightPose, snapshot: Snapshot) -> LightPose:
+    """Return the cone the actors are tested against for a spot light: its cover.
+
+    :data:`COVER_DEGREES` wider than the light's cone and its apex
+    :data:`COVER_BACK` of the actors' size behind the light, so that it holds
+    the light's cone also after the light moved or turned a little
+    (:func:`cover_holds`).
+
+    Parameters
+    ----------
+    pose : LightPose
+        The spot light.
+    snapshot : Snapshot
+        This frame's actors: their size sets how far back the apex goes.
+
+    Returns
+    -------
+    LightPose
+        The cover, a spot pose.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pyvista as pv
+    >>> from pvshadows.pipeline.reach import light_cover
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> from pvshadows.scene.snapshot import SceneReader
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> _ = pl.add_mesh(pv.Cube(x_length=10, y_length=10, z_length=10))
+    >>> snapshot = SceneReader(lambda actor: "a cube").read(pl.renderer)
+    >>> spot = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 30.0)
+    >>> cover = light_cover(spot, snapshot)
+    >>> cover.position.round(3).tolist(), cover.cone_angle
+    ([0.0, 0.0, 0.173], 31.0)
+    """
+    corners = [
+        box
+        for box in (snapshot.casters_box, snapshot.receivers_box)
+        if np.isfinite(box).all()
+    ]
+    size = float(np.linalg.norm(np.ptp(np.vstack(corners), axis=0))) if corners else 0.0
+    angle = max(pose.cone_angle, min(pose.cone_angle + COVER_DEGREES, _WIDEST_DEGREES))
+    position = pose.position - (COVER_BACK * size) * pose.direction
+    return replace(pose, position=position, cone_angle=angle)
+
+
+def cover_holds(cover: LightPose, pose: LightPose) -> bool:
+    """Tell whether a spot light's cone lies inside a cover, so that what the cover reaches holds.
+
+    It does when the light is inside the cover and its cone's edge is no
+    farther from the cover's axis than the cover's: every ray of the light
+    then stays in the cover (a cone holds each ray that starts inside it and
+    points within its angle).
+
+    Parameters
+    ----------
+    cover : LightPose
+        The cover (:func:`light_cover`).
+    pose : LightPose
+        The spot light this frame.
+
+    Returns
+    -------
+    bool
+        Whether the cover's answers hold for the light.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.pipeline.reach import cover_holds
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> cover = LightPose(LightKind.SPOT, np.array([0, 0, 1.0]), np.array([0, 0, -1.0]), 32.0)
+    >>> spot = LightPose(LightKind.SPOT, np.array([0.1, 0, 0]), np.array([0, 0, -1.0]), 30.0)
+    >>> cover_holds(cover, spot), cover_holds(cover, LightPose(
+    ...     LightKind.SPOT, np.array([0.1, 0, 0]), np.array([0, 0.1, -1.0]) / np.hypot(0.1, 1), 30.0))
+    (True, False)
+    """
+    axis = cover.direction.tolist()
+    cosine = min(1.0, sum(a * b for a, b in zip(axis, pose.direction.tolist(), strict=True)))
+    if math.degrees(math.acos(cosine)) + pose.cone_angle > cover.cone_angle:
+        return False
+    offset = [p - a for p, a in zip(pose.position.tolist(), cover.position.tolist(), strict=True)]
+    along = sum(o * a for o, a in zip(offset, axis, strict=True))
+    return along >= math.hypot(*offset) * math.cos(math.radians(cover.cone_angle))
 
 
 class ReachCache:
@@ -39,7 +153,7 @@ class ReachCache:
     """
 
     def __init__(self) -> None:
-        self._lights: dict[str, tuple[tuple, Snapshot, np.ndarray]] = {}
+        self._lights: dict[str, _Reached] = {}
         #: Cone tests run since the cache was made (one per actor tested).
         self.tests = 0
 
@@ -59,22 +173,24 @@ class ReachCache:
         -------
         numpy.ndarray
             One read-only bool per actor of :attr:`Snapshot.actors`; always
-            ``True`` for point and directional lights.
+            ``True`` for point and directional lights. ``False`` only for
+            actors outside the light's cover (:func:`light_cover`), which
+            holds its cone.
         """
         if pose.kind is not LightKind.SPOT:
             return np.ones(len(snapshot.actors), dtype=bool)
-        pose_key = pose.key()
-        kept = self._lights.get(light)
-        if kept is not None and kept[0] == pose_key:
-            if kept[1] is snapshot:
-                return kept[2]
-            if snapshot.parent is kept[1]:
+        kept = self._held(light, pose)
+        if kept is not None:
+            if kept.snapshot is snapshot:
+                return kept.hits
+            if snapshot.parent is kept.snapshot:
                 rows = list(snapshot.replaced)
-                hits = kept[2].copy()
-                hits[rows] = boxes_in_spot(snapshot.actor_bounds[rows], pose)
-                return self._keep(light, pose_key, snapshot, hits, len(rows))
-        hits = boxes_in_spot(snapshot.actor_bounds, pose)
-        return self._keep(light, pose_key, snapshot, hits, len(hits))
+                hits = kept.hits.copy()
+                hits[rows] = boxes_in_spot(snapshot.actor_bounds[rows], kept.cover)
+                return self._keep(light, kept.cover, pose, snapshot, hits, len(rows))
+        cover = light_cover(pose, snapshot)
+        hits = boxes_in_spot(snapshot.actor_bounds, cover)
+        return self._keep(light, cover, pose, snapshot, hits, len(hits))
 
     def touches(self, light: str, pose: LightPose, snapshot: Snapshot) -> bool:
         """Whether the light reaches some actor replaced since the snapshot's parent.
@@ -102,17 +218,37 @@ class ReachCache:
         rows = list(snapshot.replaced)
         if pose.kind is not LightKind.SPOT:
             return bool(rows)
-        kept = self._lights.get(light)
-        known = kept is not None and kept[0] == pose.key() and kept[1] is snapshot.parent
-        before = kept[2][rows].any() if kept is not None and known else True
+        kept = self._held(light, pose)
+        known = kept is not None and kept.snapshot is snapshot.parent
+        before = kept.hits[rows].any() if kept is not None and known else True
         return bool(before or self.reaches(light, pose, snapshot)[rows].any())
 
+    def _held(self, light: str, pose: LightPose) -> _Reached | None:
+        """Return the light's kept answers if their cover holds its cone this frame."""
+        kept = self._lights.get(light)
+        if kept is None:
+            return None
+        pose_key = pose.key()
+        if kept.pose_key == pose_key:
+            return kept
+        if not cover_holds(kept.cover, pose):
+            return None
+        kept = replace(kept, pose_key=pose_key)
+        self._lights[light] = kept
+        return kept
+
     def _keep(
-        self, light: str, pose_key: tuple, snapshot: Snapshot, hits: np.ndarray, tested: int
+        self,
+        light: str,
+        cover: LightPose,
+        pose: LightPose,
+        snapshot: Snapshot,
+        hits: np.ndarray,
+        tested: int,
     ) -> np.ndarray:
         self.tests += tested
         hits.setflags(write=False)  # handed out again while nothing changes
-        self._lights[light] = (pose_key, snapshot, hits)
+        self._lights[light] = _Reached(cover, snapshot, hits, pose.key())
         return hits
 
     def keep_only(self, lights: set[str]) -> None:

@@ -8,7 +8,7 @@ from functools import lru_cache
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.geometry.transforms import squared_lengths
+from pvshadows.geometry.transforms import look_rotation, squared_lengths
 from pvshadows.scene.lights import LightPose
 
 
@@ -298,13 +298,18 @@ def _cone_planes(direction: tuple[float, float, float], cone_angle: float) -> np
     Worked out once per direction and angle: a light tested again and again
     (one moved actor per frame, say) does not pay for the cross products.
     """
-    forward = np.array(direction)
-    right = np.cross(forward, [0.0, 0.0, 1.0] if abs(forward[2]) < 0.9 else [1.0, 0.0, 0.0])
-    right /= np.linalg.norm(right)
-    up = np.cross(right, forward)
-    spread = np.tan(np.radians(min(cone_angle, 89.9)))
+    # Missed whenever the light turns: plain floats, as numpy's cross products cost ten times more.
+    hint = (0.0, 0.0, 1.0) if abs(direction[2]) < 0.9 else (1.0, 0.0, 0.0)
+    (right, up, backward) = (row[:3] for row in look_rotation(direction, hint).tolist()[:3])
+    forward = [-b for b in backward]
+    spread = math.tan(math.radians(min(cone_angle, 89.9)))
     planes = np.array(
-        [forward] + [spread * forward + sign * axis for axis in (right, up) for sign in (-1, 1)]
+        [forward]
+        + [
+            [spread * f + sign * a for f, a in zip(forward, axis, strict=True)]
+            for axis in (right, up)
+            for sign in (-1.0, 1.0)
+        ]
     )
     planes.setflags(write=False)
     return planes
