@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import numpy.typing as npt
 
 from pvshadows import _vtk as vtk
 
@@ -26,12 +27,12 @@ CUBE_FACE_AXES = (
 )
 
 
-def look_rotation(forward: np.ndarray, up: np.ndarray) -> np.ndarray:
+def look_rotation(forward: npt.ArrayLike, up: npt.ArrayLike) -> np.ndarray:
     """Return the 4x4 rotation of a camera at the origin looking along ``forward``.
 
     Parameters
     ----------
-    forward, up : numpy.ndarray
+    forward, up : array_like
         Viewing direction and approximate up vector (need not be unit).
 
     Returns

@@ -80,9 +80,7 @@ def light_cover(pose: LightPose, snapshot: Snapshot) -> LightPose:
     ([0.0, 0.0, 0.173], 31.0)
     """
     corners = [
-        box
-        for box in (snapshot.casters_box, snapshot.receivers_box)
-        if np.isfinite(box).all()
+        box for box in (snapshot.casters_box, snapshot.receivers_box) if np.isfinite(box).all()
     ]
     size = float(np.linalg.norm(np.ptp(np.vstack(corners), axis=0))) if corners else 0.0
     angle = max(pose.cone_angle, min(pose.cone_angle + COVER_DEGREES, _WIDEST_DEGREES))
@@ -116,9 +114,11 @@ def cover_holds(cover: LightPose, pose: LightPose) -> bool:
     >>> from pvshadows.pipeline.reach import cover_holds
     >>> from pvshadows.scene.lights import LightKind, LightPose
     >>> cover = LightPose(LightKind.SPOT, np.array([0, 0, 1.0]), np.array([0, 0, -1.0]), 32.0)
-    >>> spot = LightPose(LightKind.SPOT, np.array([0.1, 0, 0]), np.array([0, 0, -1.0]), 30.0)
-    >>> cover_holds(cover, spot), cover_holds(cover, LightPose(
-    ...     LightKind.SPOT, np.array([0.1, 0, 0]), np.array([0, 0.1, -1.0]) / np.hypot(0.1, 1), 30.0))
+    >>> beside = np.array([0.1, 0, 0])
+    >>> spot = LightPose(LightKind.SPOT, beside, np.array([0, 0, -1.0]), 30.0)
+    >>> tilt = np.array([0, 0.1, -1.0]) / np.hypot(0.1, 1)
+    >>> turned = LightPose(LightKind.SPOT, beside, tilt, 30.0)
+    >>> cover_holds(cover, spot), cover_holds(cover, turned)
     (True, False)
     """
     axis = cover.direction.tolist()
