@@ -391,7 +391,10 @@ def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     turn = rotation[:3, :3]
     center = ((boxes[:, 0] + boxes[:, 1]) * 0.5) @ turn.T
     half = ((boxes[:, 1] - boxes[:, 0]) * 0.5) @ np.abs(turn).T
-    return np.stack([center - half, center + half], axis=1)
+    turned = np.empty_like(boxes)
+    np.subtract(center, half, out=turned[:, 0])
+    np.add(center, half, out=turned[:, 1])
+    return turned
 
 
 #: The corners of clip space's cube, homogeneous.
@@ -439,8 +442,7 @@ def sun_rotation(pose: LightPose) -> np.ndarray:
     [0.0, 0.0, -1.0]
     """
     rotation = look_rotation(pose.direction, _up_for(pose.direction))
-    rotation[2] *= -1.0
-    rotation[0] *= -1.0
+    rotation[::2] *= -1.0  # rows 0 and 2: x and z turned round
     return rotation
 
 
@@ -543,10 +545,10 @@ def sun_actors(pose: LightPose, snapshot: Snapshot) -> SunActors | None:
     if not casters or not receivers:
         return None
     keep = ~snapshot.caster_flat
-    if not keep.all():
-        for row in np.flatnonzero(~keep).tolist():
-            keep[row] = not _flat_and_lit_above(casters[row], pose.direction, snapshot)
-    if not keep.any():
+    flat = np.flatnonzero(snapshot.caster_flat).tolist()
+    for row in flat:
+        keep[row] = not _flat_and_lit_above(casters[row], pose.direction, snapshot)
+    if len(flat) == len(casters) and not keep.any():
         return None
     # One pass over every actor: receivers and casters are mostly the same actors.
     boxes = _light_boxes(rotation, snapshot.actor_bounds)
@@ -591,9 +593,8 @@ def sun_fit(actors: SunActors, clip_to_world: np.ndarray, resolution: int) -> Su
         # Every receiver is in the region: the fit is the scene's, whatever the camera.
         fits = actors.fits_of_whole_scene
         if resolution not in fits:
-            receivers = np.ones(len(actors.receivers), dtype=bool)
             region = np.array([x_lo, y_lo]), np.array([x_hi, y_hi])
-            fits[resolution] = _fit_over(actors, *region, receivers, resolution)
+            fits[resolution] = _fit_over(actors, *region, None, resolution)
         return fits[resolution]
     receiver_lo, receiver_hi, _ = actors.receiver_extents
     lo = np.maximum(receiver_lo, np.array([view_x_lo, view_y_lo]))
@@ -608,10 +609,13 @@ def _fit_over(
     actors: SunActors,
     region_lo: np.ndarray,
     region_hi: np.ndarray,
-    visible: np.ndarray,
+    visible: np.ndarray | None,
     resolution: int,
 ) -> SunFit | None:
-    """Fit the map to the casters over a region across the light that visible receivers span."""
+    """Fit the map to the casters over a region across the light that visible receivers span.
+
+    ``visible`` marks the visible receivers; ``None`` when every one is.
+    """
     rotation = actors.rotation
     receiver_far = actors.receiver_extents[2]
     caster_lo, caster_hi, caster_near, caster_far = actors.caster_extents
@@ -621,7 +625,8 @@ def _fit_over(
     fit_lo = np.maximum(caster_lo[over].min(axis=0), region_lo)
     fit_hi = np.minimum(caster_hi[over].max(axis=0), region_hi)
     near = float(caster_near[over].min())
-    far = max(float(caster_far[over].max()), float(receiver_far[visible].max()))
+    receiver_far = receiver_far if visible is None else receiver_far[visible]
+    far = max(float(caster_far[over].max()), float(receiver_far.max()))
     return _fit_around(rotation, fit_lo, fit_hi, near, far, resolution)
 
 
@@ -641,7 +646,11 @@ def _fit_around(
     size = max(float((fit_hi - fit_lo).max()), 1e-30)
     size = 2.0 ** (math.ceil(math.log2(size) * SIZE_STEPS_PER_OCTAVE) / SIZE_STEPS_PER_OCTAVE)
     texel = size / (resolution - 2 * MARGIN_TEXELS)
-    center = np.round(0.5 * (fit_lo + fit_hi) / texel) * texel
+    # Python's round, like numpy's, rounds halves to even.
+    center = [
+        round(0.5 * (lo + hi) / texel) * texel
+        for lo, hi in zip(fit_lo.tolist(), fit_hi.tolist(), strict=True)
+    ]
     step = 2.0 ** math.ceil(math.log2(max(far - near, 1e-30))) / 16.0
     near = math.floor(near / step) * step - step
     far = math.ceil(far / step) * step + step
