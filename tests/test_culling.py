@@ -203,3 +203,47 @@ def test_cube_faces_touching_boxes_match_a_test_plane_by_plane(scale):
     assert near[[i for i, mask in enumerate(expected) if mask == 63]].max() == 0.0
     # boxes seen by one face only, and boxes around the light, seen by all six
     assert {1, 63} <= set(expected)
+
+
+@pytest.mark.parametrize("seed", range(3))
+@pytest.mark.parametrize("light", ["spot", "point"])
+def test_measures_of_widened_boxes_hold_for_a_light_moved_within_the_margin(light, seed):
+    """A moving light is served the measures of boxes widened round where it was: nearer
+    than every box, farther than its corners, spread as wide about the kept axis, and on
+    every cube face it touches from anywhere within the margin."""
+    from pvshadows.scene.fitting import _rotation_along, cone_measures
+    from pvshadows.scene.measures import _widened
+    from pvshadows.techniques.cubemap import cube_measures
+
+    measure = cone_measures if light == "spot" else cube_measures
+    rng = np.random.default_rng(seed)
+    base = _random_pose(rng)
+    centres = base.position + rng.normal(size=(300, 3)) * 4.0
+    halves = rng.uniform(0.01, 1.5, (300, 3))
+    boxes = np.stack([centres - halves, centres + halves], axis=1)
+    margin = 0.05
+    kept = measure(base, _widened(boxes, margin))
+    turn = _rotation_along(tuple(base.direction.tolist()))[:3, :3]
+    for _ in range(20):
+        step = rng.normal(size=3)
+        moved = LightPose(
+            base.kind,
+            base.position + step / np.linalg.norm(step) * margin * rng.uniform(0.2, 1.0),
+            base.direction,
+            base.cone_angle,
+        )
+        exact = measure(moved, boxes)
+        assert np.all(kept.near <= exact.near) and np.all(kept.far >= exact.far)
+        if light == "point":
+            assert np.all(kept.faces & exact.faces == exact.faces)
+            continue
+        # The spread about the kept axis, from where the light is now, over every corner.
+        sides = [[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+        corners = np.stack([np.where(side, boxes[:, 1], boxes[:, 0]) for side in sides], axis=1)
+        x, y, z = np.moveaxis((corners - moved.position) @ turn.T, -1, 0)
+        depth = -z
+        in_front = (depth > 0).all(axis=1)
+        across = np.maximum(np.abs(x), np.abs(y)) / np.where(in_front[:, None], depth, 1.0)
+        spread = np.where(in_front, across.max(axis=1), np.inf)
+        assert in_front.sum() > 20  # spreads were compared, not only infinities
+        assert np.all(kept.spread >= spread * (1 - 1e-12))

@@ -60,7 +60,12 @@ def _up_for(direction: np.ndarray) -> np.ndarray:
 
 
 def spot_fit(
-    pose: LightPose, resolution: int, near: float, far: float, spread: float | None = None
+    pose: LightPose,
+    resolution: int,
+    near: float,
+    far: float,
+    spread: float | None = None,
+    axis: np.ndarray | None = None,
 ) -> SpotFit:
     """Return the perspective map holding a spot light's cone, or the casters in it.
 
@@ -77,6 +82,11 @@ def spot_fit(
         shadow a receiver: when they all lie in front of the light, the map
         holds only them (its texels are then finer than the cone's); when
         not (infinite) or not given, the whole cone.
+    axis : numpy.ndarray, optional
+        Unit direction the map looks along (the light's by default): the
+        one ``spread`` was measured about, which the light may have turned
+        from since (:class:`pvshadows.scene.measures.CasterMeasureCache`).
+        The whole cone is then held about it: its angle grows by the turn.
 
     Returns
     -------
@@ -92,9 +102,18 @@ def spot_fit(
     >>> fit = spot_fit(pose, 1000, 0.1, 10.0)
     >>> round(fit.texel, 4)
     0.002
+    >>> tilted = np.array([np.sin(np.radians(1.0)), 0.0, -np.cos(np.radians(1.0))])
+    >>> round(spot_fit(pose, 1000, 0.1, 10.0, axis=tilted).texel / fit.texel, 3)  # tan 46°/tan 45°
+    1.036
     """
-    rotation = _spot_rotation(pose)
-    cone = float(np.tan(np.radians(min(pose.cone_angle, 89.0))))
+    direction = pose.direction.tolist()
+    along = direction if axis is None else axis.tolist()
+    rotation = _rotation_along(tuple(along))
+    turned = 0.0
+    if along != direction:
+        cosine = sum(a * b for a, b in zip(along, direction, strict=True))
+        turned = math.degrees(math.acos(max(-1.0, min(1.0, cosine))))
+    cone = math.tan(math.radians(min(pose.cone_angle + turned, 89.0)))
     half = cone if spread is None else min(cone, spread)
     half *= 1.0 + 2.0 * MARGIN_TEXELS / resolution
     fov = 2.0 * np.degrees(np.arctan(half))

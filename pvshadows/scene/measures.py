@@ -1,16 +1,24 @@
-"""Values measured from a light for each caster, kept and patched where actors changed.
+"""Values measured from a light for each caster, kept while the light stays near, patched.
 
 A light's map is fitted to its casters (their distances, their spread
 around a spot's axis, the cube faces each touches). Measured afresh, that is
-a pass over every caster each time anything changes; kept per light while
-the light stays where it is, a frame whose snapshot follows the last
+a pass over every caster each time anything changes. Kept per light, a
+frame whose snapshot follows the last
 (:meth:`pvshadows.scene.snapshot.Snapshot.successor`) measures only the
-casters replaced in it: an actor that moved costs its own box, not the scene's.
+casters replaced in it: an actor that moved costs its own box, not the
+scene's. A light that moves measures its casters' boxes widened by a margin
+(:data:`MARGIN_OF_NEAREST` of the nearest caster's distance): the measures
+then hold, conservatively, for every position of the light within that
+margin of where they were taken (and for a spot turned by at most
+:data:`TURN_DEGREES` from its axis there), so a light dragged or animated
+across frames measures its casters again only when it leaves the margin.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Generic, NamedTuple, TypeVar
 
 import numpy as np
@@ -20,16 +28,53 @@ from pvshadows.scene.snapshot import CASTERS, Snapshot
 
 MeasuresT = TypeVar("MeasuresT", bound=NamedTuple)
 
+#: A moving light's casters are measured with their boxes widened by this share of
+#: the distance from the light to the nearest of them.
+MARGIN_OF_NEAREST = 0.02
+#: Degrees a spot light may turn from the axis its casters were measured about.
+TURN_DEGREES = 1.0
+
+
+@dataclass(frozen=True)
+class Measured(Generic[MeasuresT]):
+    """A light's measures of every caster, and where they were taken from.
+
+    Attributes
+    ----------
+    values : named tuple
+        One row per caster of the snapshot (what the cache's ``measure``
+        returns). They are the light's exact measures when ``margin`` is 0,
+        and otherwise hold for every light within ``margin`` of ``base``
+        (see :class:`CasterMeasureCache`).
+    base : LightPose
+        The pose they were measured from: a spot's map looks along its
+        direction (the casters' spread is measured about it).
+    margin : float
+        How far the casters' boxes were widened on every side.
+    """
+
+    values: MeasuresT
+    base: LightPose
+    margin: float
+
 
 class CasterMeasureCache(Generic[MeasuresT]):
-    """One light's measures of every caster, kept while the light stays where it is.
+    """One light's measures of every caster, kept while the light stays near where they were taken.
 
     Parameters
     ----------
     measure : callable
         ``measure(pose, boxes)`` returns a named tuple of ``(n,)`` arrays, one
         row per ``(n, 2, 3)`` box (for example
-        :func:`pvshadows.scene.fitting.cone_measures`).
+        :func:`pvshadows.scene.fitting.cone_measures`). Each measure must
+        bound from below (a distance to a box) or above (a distance to its
+        farthest corner, a spread, the cube faces it touches) what it gives
+        for any smaller box, so that measures of widened boxes hold for a
+        light that moved within the widening.
+    turns : bool, default: False
+        Whether the measures depend on the light's direction (a spot's spread
+        about its axis): then they are kept only while the light turns by at
+        most :data:`TURN_DEGREES`.
 
     Attributes
     ----------
@@ -48,23 +93,43 @@ class CasterMeasureCache(Generic[MeasuresT]):
     >>> boxes = [pl.add_mesh(pv.Cube(center=(x, 0, -5))) for x in (-1, 1)]
     >>> reader = SceneReader(lambda actor: "a cube")
     >>> pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 45.0)
-    >>> cache = CasterMeasureCache(cone_measures)
-    >>> cache.of(pose, reader.read(pl.renderer)).near.round(2).tolist()
+    >>> cache = CasterMeasureCache(cone_measures, turns=True)
+    >>> cache.of(pose, reader.read(pl.renderer)).values.near.round(2).tolist()
     [20.5, 20.5]
     >>> boxes[1].position = (0, 0, 1)
-    >>> cache.of(pose, reader.read(pl.renderer)).near.round(2).tolist(), cache.measured
+    >>> cache.of(pose, reader.read(pl.renderer)).values.near.round(2).tolist(), cache.measured
     ([20.5, 12.5], 3)
+
+    A light that moved measures boxes widened by 2 % of the nearest one's
+    distance (3.5), and keeps those measures while it stays within that margin:
+
+    >>> snapshot = reader.read(pl.renderer)
+    >>> moved = LightPose(LightKind.SPOT, np.array([0.01, 0, 0]), pose.direction, 45.0)
+    >>> measured = cache.of(moved, snapshot)
+    >>> measured.base is moved, round(measured.margin, 4), cache.measured
+    (True, 0.0705, 5)
+    >>> further = LightPose(LightKind.SPOT, np.array([0.05, 0, 0]), pose.direction, 45.0)
+    >>> cache.of(further, snapshot).base is moved, cache.measured
+    (True, 5)
     """
 
-    def __init__(self, measure: Callable[[LightPose, np.ndarray], MeasuresT]) -> None:
+    def __init__(
+        self, measure: Callable[[LightPose, np.ndarray], MeasuresT], *, turns: bool = False
+    ) -> None:
         self._measure = measure
-        self._key: tuple | None = None
+        self._turns = turns
+        self._base: LightPose | None = None
+        self._margin = 0.0
+        #: A lower bound of the distance from ``_base`` to the nearest caster.
+        self._nearest = 0.0
+        #: The key of the last pose served: the light's pose is compared with it first.
+        self._served: tuple | None = None
         self._snapshot: Snapshot | None = None
         self._measures: MeasuresT | None = None
         self.measured = 0
 
-    def of(self, pose: LightPose, snapshot: Snapshot) -> MeasuresT:
-        """Return the measures of every caster of ``snapshot`` from the light ``pose``.
+    def of(self, pose: LightPose, snapshot: Snapshot) -> Measured[MeasuresT]:
+        """Return measures of every caster of ``snapshot`` that hold for the light ``pose``.
 
         Parameters
         ----------
@@ -75,30 +140,87 @@ class CasterMeasureCache(Generic[MeasuresT]):
 
         Returns
         -------
-        named tuple
-            What ``measure`` returns, one row per caster of ``snapshot``.
+        Measured
+            One row per caster of ``snapshot``: exact for ``pose`` while the
+            light has not moved since they were taken, else those of widened
+            boxes taken from a pose near it.
         """
         key = pose.key()
+        base = self._base
+        if base is not None and (key == self._served or self._holds(base, pose)):
+            values = self._brought_to(snapshot)
+            if values is not None:
+                self._served = key
+                return Measured(values, base, self._margin)
+        moving = base is not None and key != self._served
+        margin = 0.0
+        if moving:
+            assert base is not None
+            margin = MARGIN_OF_NEAREST * max(self._nearest - _distance(base, pose), 0.0)
+        self._measure_all(pose, snapshot, margin)
+        self._served = key
+        assert self._measures is not None  # measured just now
+        return Measured(self._measures, pose, margin)
+
+    def _holds(self, base: LightPose, pose: LightPose) -> bool:
+        """Whether measures taken from ``base`` with this margin hold for ``pose``."""
+        if _distance(base, pose) > self._margin:
+            return False
+        if not self._turns:
+            return True
+        return _turn_degrees(base, pose) <= TURN_DEGREES
+
+    def _brought_to(self, snapshot: Snapshot) -> MeasuresT | None:
+        """Return the kept measures brought up to ``snapshot``, or ``None`` if it is not theirs."""
         kept = self._measures
-        if kept is not None and key == self._key:
-            if snapshot is self._snapshot:
-                return kept
-            if self._snapshot is not None and snapshot.parent is self._snapshot:
-                patches = snapshot.patches(CASTERS)
-                self.measured += len(patches)
-                self._snapshot = snapshot
-                if patches:
-                    rows = [row for row, _ in patches]
-                    fresh = self._measure(pose, np.array([state.bounds for _, state in patches]))
-                    pairs = zip(kept, fresh, strict=True)
-                    kept = kept._make(_patched(old, rows, new) for old, new in pairs)
-                    self._measures = kept
-                return kept
-        self._key, self._snapshot = key, snapshot
+        if snapshot is self._snapshot:
+            return kept
+        if self._snapshot is None or snapshot.parent is not self._snapshot or kept is None:
+            return None
+        patches = snapshot.patches(CASTERS)
+        self.measured += len(patches)
+        self._snapshot = snapshot
+        if patches:
+            assert self._base is not None  # measures were taken from it
+            rows = [row for row, _ in patches]
+            boxes = _widened(np.array([state.bounds for _, state in patches]), self._margin)
+            fresh = self._measure(self._base, boxes)
+            pairs = zip(kept, fresh, strict=True)
+            kept = kept._make(_patched(old, rows, new) for old, new in pairs)
+            self._measures = kept
+            self._nearest = min(self._nearest, _nearest_of(fresh))
+        return kept
+
+    def _measure_all(self, pose: LightPose, snapshot: Snapshot, margin: float) -> None:
         boxes = snapshot.caster_bounds
         self.measured += len(boxes)
-        self._measures = self._measure(pose, boxes)
-        return self._measures
+        measures = self._measure(pose, _widened(boxes, margin))
+        self._base, self._margin, self._snapshot, self._measures = pose, margin, snapshot, measures
+        # The widened boxes are no farther than the boxes themselves.
+        self._nearest = _nearest_of(measures)
+
+
+def _distance(a: LightPose, b: LightPose) -> float:
+    return math.dist(a.position.tolist(), b.position.tolist())
+
+
+def _turn_degrees(a: LightPose, b: LightPose) -> float:
+    """Degrees between two poses' directions (unit vectors)."""
+    cosine = sum(x * y for x, y in zip(a.direction.tolist(), b.direction.tolist(), strict=True))
+    return math.degrees(math.acos(max(-1.0, min(1.0, cosine))))
+
+
+def _widened(boxes: np.ndarray, margin: float) -> np.ndarray:
+    """Return ``(n, 2, 3)`` boxes grown by ``margin`` on every side (the boxes themselves for 0)."""
+    if margin == 0.0:
+        return boxes
+    return boxes + np.array([[-margin] * 3, [margin] * 3])
+
+
+def _nearest_of(measures: NamedTuple) -> float:
+    """Return the distance to the nearest box, from measures whose ``near`` is squared distances."""
+    near = measures.near  # type: ignore[attr-defined]
+    return math.sqrt(float(near.min())) if len(near) else math.inf
 
 
 def _patched(values: np.ndarray, rows: list[int], fresh: np.ndarray) -> np.ndarray:

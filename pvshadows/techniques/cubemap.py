@@ -240,7 +240,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             return [PassReport("cube depth", "reused", reused)]
         state.planned = None
         position, snapshot = plan.pose.position, context.snapshot
-        measures = state.measures.of(plan.pose, snapshot)
+        measures = state.measures.of(plan.pose, snapshot).values
         state.nearest, state.far = distance_range(
             snapshot.for_casters(measures.near, plan.casters),
             snapshot.for_casters(measures.far, plan.casters),

@@ -37,7 +37,7 @@ from pvshadows.scene.fitting import (
     sun_fit_over_both,
     sun_rotation,
 )
-from pvshadows.scene.lights import LightKind
+from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.measures import CasterMeasureCache
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
@@ -71,9 +71,12 @@ class MapState(LightState):
     range_snapshot: object = None
     #: The far distance and spread a spot's map is fitted to (:func:`spot_fit_holds`).
     fitted_for: tuple[float, float | None] = (0.0, None)
+    #: The pose whose direction a spot's map looks along
+    #: (:attr:`pvshadows.scene.measures.Measured.base`).
+    fitted_about: LightPose | None = None
     texel: float = 1.0
     measures: CasterMeasureCache[ConeMeasures] = field(
-        default_factory=lambda: CasterMeasureCache(cone_measures)
+        default_factory=lambda: CasterMeasureCache(cone_measures, turns=True)
     )
     sun_actors: tuple | None = None
     fit_key: tuple | None = None
@@ -155,19 +158,27 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         range_key = (pose.key(), settings.resolution, context.snapshot.keys_of(ranged))
         if range_key != state.range_key or state.range_snapshot is not context.snapshot:
             snapshot = context.snapshot
-            measures = state.measures.of(pose, snapshot)
+            measured = state.measures.of(pose, snapshot)
+            measures = measured.values
             nearest, far = distance_range(
                 snapshot.for_casters(measures.near, ranged),
                 snapshot.for_casters(measures.far, ranged),
             )
             shadowing = spot_shadowing_rows(pose, inside, snapshot)
             spread = float(measures.spread[shadowing].max()) if len(shadowing) else None
-            kept = state.range_key is not None and state.range_key[:2] == range_key[:2]
+            kept = (
+                state.range_key is not None
+                and state.range_key[:2] == range_key[:2]
+                and state.fitted_about is measured.base
+            )
             if not (kept and spot_fit_holds(state.fitted_for, (far, spread))):
-                fit = spot_fit(pose, settings.resolution, far * 1e-4, far, spread)
+                # The map looks along the axis the spread was measured about: the light's
+                # own, or one it has turned from by a little since.
+                axis = measured.base.direction
+                fit = spot_fit(pose, settings.resolution, far * 1e-4, far, spread, axis)
                 state.world_to_light = translation(-pose.position)
                 state.light_to_clip, state.texel = fit.light_to_clip, fit.texel
-                state.fitted_for = (far, spread)
+                state.fitted_for, state.fitted_about = (far, spread), measured.base
             state.range_key, state.range = range_key, (nearest, state.fitted_for[0])
             state.range_snapshot = context.snapshot
         nearest, far = state.range
