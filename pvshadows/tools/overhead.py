@@ -4,7 +4,9 @@ With ``GALLIUM_NOOP=1`` Mesa validates every GL call and draws nothing, so a
 frame costs only its CPU work: what remains for a user whose GPU is fast.
 Each scene is built twice, once with shadows and once without (the twin);
 frames of the two alternate, each moved the same way (nothing, the camera,
-the first light, or one caster), and the CPU time of the thread drawing them
+the first light, or one caster; the light always the same way, so that no
+cache keyed by its pose answers a frame for free), and the CPU time of the
+thread drawing them
 (``time.thread_time()``) is kept. The overhead is the median of the
 differences between the two frames of each turn, every motion measured in
 rounds spread over the run. The first frame after ``enable()`` is timed
