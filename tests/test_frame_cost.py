@@ -748,3 +748,54 @@ def test_a_light_moving_and_turning_a_little_keeps_its_shadows_right(light):
         errors.append(pl.shadows.measure(scene.light).misclassified)
     assert state.measures.measured == measured  # the margin held the later moves
     assert max(errors) <= 0.002
+
+
+def test_a_suns_widened_boxes_hold_every_box_turned_within_its_slack():
+    import numpy as np
+
+    from pvshadows.scene.fitting import SUN_TURN_DEGREES, sun_actors, sun_rotation
+    from pvshadows.scene.lights import LightKind, LightPose
+
+    pl, _ = crowd()
+    snapshot = pl.shadows._renderers[0].snapshot
+    rng = np.random.default_rng(0)
+    checked = 0
+    for _ in range(20):
+        direction = rng.normal(size=3)
+        direction /= np.linalg.norm(direction)
+        base = LightPose(LightKind.DIRECTIONAL, np.zeros(3), direction, 180.0)
+        widened = sun_actors(base, sun_rotation(base), snapshot, SUN_TURN_DEGREES)
+        for _ in range(10):
+            turned = direction + rng.normal(size=3) * 0.006
+            pose = LightPose(
+                LightKind.DIRECTIONAL, np.zeros(3), turned / np.linalg.norm(turned), 180.0
+            )
+            rotation = sun_rotation(pose)
+            if not widened.holds(rotation):
+                continue
+            checked += 1
+            # The boxes turned exactly, from the same pivot, lie inside the widened ones.
+            exact = sun_actors(pose, rotation, snapshot)
+            for name in ("receivers", "every_caster"):
+                inner, outer = getattr(exact, name), getattr(widened, name)
+                assert np.all(outer[:, 0] <= inner[:, 0]) and np.all(outer[:, 1] >= inner[:, 1])
+    assert checked > 50
+
+
+def test_a_sun_turning_a_little_reads_its_actors_once_and_keeps_its_shadows_right():
+    scene = standard_scene(window_size=(240, 180), light="directional")
+    pl = scene.plotter
+    pl.shadows.enable(lights=[scene.light], filter="hard")
+    draw(pl)
+    state = pl.shadows._renderers[0].technique("map")._states[vtk_id(scene.light)]
+    x, y, z = scene.light.position
+    errors, read = [], []
+    for step in range(1, 5):
+        scene.light.position = (x + 0.02 * step, y - 0.01 * step, z)  # about 0.1 degree a step
+        draw(pl)
+        assert pl.shadows.last_frame.passes_run == 1
+        read.append(state.sun_actors[2])
+        errors.append(pl.shadows.measure(scene.light).misclassified)
+    # read once, widened, at the first move; the later moves stay within the slack
+    assert read[0].slack > 0 and all(each is read[0] for each in read)
+    assert max(errors) <= 0.002

@@ -79,10 +79,8 @@ def light_cover(pose: LightPose, snapshot: Snapshot) -> LightPose:
     >>> cover.position.round(3).tolist(), cover.cone_angle
     ([0.0, 0.0, 0.173], 31.0)
     """
-    corners = [
-        box for box in (snapshot.casters_box, snapshot.receivers_box) if np.isfinite(box).all()
-    ]
-    size = float(np.linalg.norm(np.ptp(np.vstack(corners), axis=0))) if corners else 0.0
+    low, high = snapshot.scene_box.tolist()
+    size = math.dist(low, high) if math.isfinite(sum(low) + sum(high)) else 0.0
     angle = max(pose.cone_angle, min(pose.cone_angle + COVER_DEGREES, _WIDEST_DEGREES))
     position = pose.position - (COVER_BACK * size) * pose.direction
     return replace(pose, position=position, cone_angle=angle)

@@ -34,6 +34,9 @@ MARGIN_TEXELS = 2
 #: A spot's map keeps its fit while its casters need no more than it and at least
 #: ``1 / REFIT_SLACK`` of it, in far distance and in spread (:func:`spot_fit_holds`).
 REFIT_SLACK = 1.1
+#: Degrees a moving directional light may turn before its fit reads its actors again
+#: (:func:`sun_actors`, :meth:`SunActors.holds`).
+SUN_TURN_DEGREES = 0.5
 
 
 @dataclass(frozen=True)
@@ -465,17 +468,30 @@ def sun_rotation(pose: LightPose) -> np.ndarray:
     return rotation
 
 
+#: What a sun's map is fitted round, across and along the light, from the actors' pivot:
+#: low and high corners across, near and far along (:func:`_region_over`).
+SunRegion = tuple[np.ndarray, np.ndarray, float, float]
+
+
 @dataclass(frozen=True)
 class SunActors:
     """What a directional light's fit reads of the actors, in the light's axes.
 
-    It stays right while the light and the actors do, however the camera
-    moves (see :func:`sun_actors`).
+    It stays right while the actors do and the light turns by at most
+    ``slack`` (see :func:`sun_actors`), however the camera moves. Its boxes
+    are measured from ``pivot`` (light-axis coordinates of ``point - pivot``)
+    and widened by ``slack`` times the distance from the pivot to the
+    farthest corner, so that they hold every box turned by any rotation
+    within ``slack`` of ``rotation``.
 
     Attributes
     ----------
     rotation : numpy.ndarray
-        ``(4, 4)`` rotation from world axes to light axes.
+        ``(4, 4)`` rotation from world axes to light axes the boxes were turned by.
+    pivot : numpy.ndarray
+        ``(3,)`` world point the boxes are measured from: the centre of the actors.
+    slack : float
+        Radians the light may turn from ``rotation`` with the boxes still holding.
     receivers : numpy.ndarray
         ``(n, 2, 3)`` the receivers' boxes in light axes.
     casters : numpy.ndarray
@@ -487,9 +503,34 @@ class SunActors:
     """
 
     rotation: np.ndarray
+    pivot: np.ndarray
+    slack: float
     receivers: np.ndarray
     casters: np.ndarray
     every_caster: np.ndarray
+
+    def holds(self, rotation: np.ndarray) -> bool:
+        """Tell whether these boxes hold the actors turned by ``rotation``.
+
+        Parameters
+        ----------
+        rotation : numpy.ndarray
+            ``(4, 4)`` a directional light's rotation this frame (:func:`sun_rotation`).
+
+        Returns
+        -------
+        bool
+            Whether it turns by at most :attr:`slack` from :attr:`rotation`.
+        """
+        if rotation is self.rotation:
+            return True
+        # The angle of the rotation from one to the other: trace(A Bᵀ) = 1 + 2 cos(angle).
+        trace = float((rotation[:3, :3] * self.rotation[:3, :3]).sum())
+        return math.acos(max(-1.0, min(1.0, 0.5 * (trace - 1.0)))) <= self.slack
+
+    def offset(self, rotation: np.ndarray) -> list[float]:
+        """Return the pivot in the light axes of ``rotation``: what the boxes are measured from."""
+        return (rotation[:3, :3] @ self.pivot).tolist()
 
     def casters_in(self, fit: SunFit, snapshot: Snapshot) -> list[ActorState]:
         """Return the casters whose bounds overlap a map's coverage across the light.
@@ -497,7 +538,7 @@ class SunActors:
         Parameters
         ----------
         fit : SunFit
-            The map, looking along this light.
+            The map, looking along this light (turned by at most :attr:`slack`).
         snapshot : Snapshot
             The renderer's actors these boxes were read from.
 
@@ -506,11 +547,22 @@ class SunActors:
         list of ActorState
             The casters to draw into the map.
         """
-        boxes, center, half = self.every_caster, fit.near_center[:2], fit.half_width
+        x, y, _ = self.offset(fit.rotation)
+        (center_x, center_y, _), half, texel = fit.near_center.tolist(), fit.half_width, fit.texel
+        # The square's centre, from the pivot, in texels (a fit snaps it to them): the same
+        # square as the last fit's has the same casters (a light turning within the slack
+        # keeps the scene's fit's square).
+        square = (round((center_x - x) / texel), round((center_y - y) / texel), half)
+        kept = self.casters_of_square
+        if kept and kept[0] == square:
+            return kept[1]
+        boxes, center = self.every_caster, np.array([center_x - x, center_y - y])
         inside = np.all(boxes[:, 1, :2] >= center - half, axis=1) & np.all(
             boxes[:, 0, :2] <= center + half, axis=1
         )
-        return [caster for caster, keep in zip(snapshot.casters, inside, strict=True) if keep]
+        casters = [caster for caster, keep in zip(snapshot.casters, inside, strict=True) if keep]
+        kept[:] = [square, casters]
+        return casters
 
     @cached_property
     def receiver_extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -528,9 +580,23 @@ class SunActors:
         return (*low.tolist(), *high.tolist())
 
     @cached_property
-    def fits_of_whole_scene(self) -> dict[int, SunFit | None]:
-        """Fits by resolution for a view that holds every receiver (the camera does not matter)."""
+    def fits_of_whole_scene(self) -> dict[int, tuple[np.ndarray, SunFit | None]]:
+        """For a view that holds every receiver, the last rotation and its fit, by resolution."""
         return {}
+
+    @cached_property
+    def regions_of_whole_scene(self) -> dict[int, SunRegion | None]:
+        """For a view that holds every receiver, :func:`_fit_over`'s region by resolution.
+
+        It does not depend on the rotation (within :attr:`slack`): a light
+        turning a little is fitted to it at the cost of a few floats.
+        """
+        return {}
+
+    @cached_property
+    def casters_of_square(self) -> list:
+        """The last square :meth:`casters_in` tested (from the pivot), and its casters."""
+        return []
 
     @cached_property
     def caster_extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -544,38 +610,61 @@ class SunActors:
         )
 
 
-def sun_actors(pose: LightPose, snapshot: Snapshot) -> SunActors | None:
+def sun_actors(
+    pose: LightPose, rotation: np.ndarray, snapshot: Snapshot, slack_degrees: float = 0.0
+) -> SunActors | None:
     """Return what a directional light's fit reads of the actors (``None`` if it can cast nothing).
 
     Parameters
     ----------
     pose : LightPose
         The directional light.
+    rotation : numpy.ndarray
+        Its rotation (:func:`sun_rotation`).
     snapshot : Snapshot
         The renderer's actors this frame.
+    slack_degrees : float, default: 0.0
+        How far the light may turn with the boxes still holding (a moving
+        light's): each box is widened by that angle (in radians) times the
+        distance from the actors' centre to their farthest corner, and a flat
+        caster that the turn could bring into the light is kept.
 
     Returns
     -------
     SunActors or None
         ``None`` without a receiver or a caster that can shadow one.
     """
-    rotation = sun_rotation(pose)
     casters, receivers = snapshot.casters, snapshot.receivers
     if not casters or not receivers:
         return None
+    slack = math.radians(slack_degrees)
     keep = ~snapshot.caster_flat
     flat = np.flatnonzero(snapshot.caster_flat).tolist()
+    grazing = math.sin(slack)
     for row in flat:
-        keep[row] = not _flat_and_lit_above(casters[row], pose.direction, snapshot)
+        sheet = casters[row].sheet
+        turns_over = (
+            slack > 0.0 and sheet is not None and abs(sheet.normal @ pose.direction) <= grazing
+        )
+        keep[row] = turns_over or not _flat_and_lit_above(casters[row], pose.direction, snapshot)
     if len(flat) == len(casters) and not keep.any():
         return None
+    low, high = snapshot.scene_box
+    pivot = 0.5 * (low + high)
+    margin = slack * 0.5 * math.dist(low.tolist(), high.tolist())
     # One pass over every actor: receivers and casters are mostly the same actors.
-    boxes = _light_boxes(rotation, snapshot.actor_bounds)
+    boxes = _light_boxes(rotation, snapshot.actor_bounds - pivot)
+    if margin > 0.0:
+        boxes += np.array([[-margin] * 3, [margin] * 3])
     every_caster = boxes[snapshot.caster_index]
-    return SunActors(rotation, boxes[snapshot.receiver_index], every_caster[keep], every_caster)
+    return SunActors(
+        rotation, pivot, slack, boxes[snapshot.receiver_index], every_caster[keep], every_caster
+    )
 
 
-def sun_fit(actors: SunActors, clip_to_world: np.ndarray, resolution: int) -> SunFit | None:
+def sun_fit(
+    actors: SunActors, rotation: np.ndarray, clip_to_world: np.ndarray, resolution: int
+) -> SunFit | None:
     """Fit a directional light's map to the casters that can shadow a visible receiver.
 
     The region across the light is what the camera sees of the receivers,
@@ -584,13 +673,16 @@ def sun_fit(actors: SunActors, clip_to_world: np.ndarray, resolution: int) -> Su
     size is rounded up to one of ``SIZE_STEPS_PER_OCTAVE`` sizes per octave
     and its centre snapped to the map's texels, so shadow edges stay put
     while only the camera moves. A view that holds every receiver across the
-    light gets the scene's fit, worked out once and kept on ``actors``: the
-    same object however such a camera moves.
+    light gets the scene's fit, worked out once per rotation and kept on
+    ``actors``: the same object however such a camera moves.
 
     Parameters
     ----------
     actors : SunActors
-        The light's receivers and casters in its axes.
+        The light's receivers and casters in its axes, holding for ``rotation``
+        (:meth:`SunActors.holds`).
+    rotation : numpy.ndarray
+        ``(4, 4)`` the light's rotation this frame (:func:`sun_rotation`): the map's.
     clip_to_world : numpy.ndarray
         ``(4, 4)`` the inverse of the camera's world-to-clip matrix
         (:attr:`pvshadows.scene.view.FrameView.clip_to_world`).
@@ -602,51 +694,58 @@ def sun_fit(actors: SunActors, clip_to_world: np.ndarray, resolution: int) -> Su
     SunFit or None
         ``None`` when no caster can shadow a visible receiver.
     """
-    # The view's corners in light axes: the rotation keeps the homogeneous weight.
-    # Eight corners: plain floats cost less than numpy's calls.
-    corners = (_CLIP_CORNERS @ (actors.rotation @ clip_to_world).T).tolist()
-    xs, ys = [x / w for x, _, _, w in corners], [y / w for _, y, _, w in corners]
+    # The view's corners in light axes, from the actors' pivot: the rotation keeps the
+    # homogeneous weight. Eight corners: plain floats cost less than numpy's calls.
+    x0, y0, _ = actors.offset(rotation)
+    corners = (_CLIP_CORNERS @ (rotation @ clip_to_world).T).tolist()
+    xs, ys = [x / w - x0 for x, _, _, w in corners], [y / w - y0 for _, y, _, w in corners]
     view_x_lo, view_y_lo, view_x_hi, view_y_hi = min(xs), min(ys), max(xs), max(ys)
     x_lo, y_lo, x_hi, y_hi = actors.receivers_across
     if view_x_lo <= x_lo and view_y_lo <= y_lo and view_x_hi >= x_hi and view_y_hi >= y_hi:
         # Every receiver is in the region: the fit is the scene's, whatever the camera.
-        fits = actors.fits_of_whole_scene
-        if resolution not in fits:
-            region = np.array([x_lo, y_lo]), np.array([x_hi, y_hi])
-            fits[resolution] = _fit_over(actors, *region, None, resolution)
-        return fits[resolution]
+        fits, regions = actors.fits_of_whole_scene, actors.regions_of_whole_scene
+        kept = fits.get(resolution)
+        if kept is None or kept[0] is not rotation:
+            if resolution not in regions:
+                view = np.array([x_lo, y_lo]), np.array([x_hi, y_hi])
+                regions[resolution] = _region_over(actors, *view, None)
+            region = regions[resolution]
+            fit = (
+                None if region is None else _fit_around(rotation, *region, resolution, actors.pivot)
+            )
+            kept = fits[resolution] = (rotation, fit)
+        return kept[1]
     receiver_lo, receiver_hi, _ = actors.receiver_extents
     lo = np.maximum(receiver_lo, np.array([view_x_lo, view_y_lo]))
     hi = np.minimum(receiver_hi, np.array([view_x_hi, view_y_hi]))
     visible = (lo <= hi).all(axis=1)
     if not visible.any():
         return None
-    return _fit_over(actors, lo[visible].min(axis=0), hi[visible].max(axis=0), visible, resolution)
+    region = _region_over(actors, lo[visible].min(axis=0), hi[visible].max(axis=0), visible)
+    return None if region is None else _fit_around(rotation, *region, resolution, actors.pivot)
 
 
-def _fit_over(
-    actors: SunActors,
-    region_lo: np.ndarray,
-    region_hi: np.ndarray,
-    visible: np.ndarray | None,
-    resolution: int,
-) -> SunFit | None:
-    """Fit the map to the casters over a region across the light that visible receivers span.
+def _region_over(
+    actors: SunActors, view_lo: np.ndarray, view_hi: np.ndarray, visible: np.ndarray | None
+) -> SunRegion | None:
+    """Return the region to fit: the casters over what visible receivers span of the view.
 
     ``visible`` marks the visible receivers; ``None`` when every one is.
+    Measured from the actors' pivot, as their boxes are: low and high
+    corners across the light, near and far along it (``None`` when no
+    caster is over it).
     """
-    rotation = actors.rotation
     receiver_far = actors.receiver_extents[2]
     caster_lo, caster_hi, caster_near, caster_far = actors.caster_extents
-    over = (caster_hi >= region_lo).all(axis=1) & (caster_lo <= region_hi).all(axis=1)
+    over = (caster_hi >= view_lo).all(axis=1) & (caster_lo <= view_hi).all(axis=1)
     if not over.any():
         return None
-    fit_lo = np.maximum(caster_lo[over].min(axis=0), region_lo)
-    fit_hi = np.minimum(caster_hi[over].max(axis=0), region_hi)
+    fit_lo = np.maximum(caster_lo[over].min(axis=0), view_lo)
+    fit_hi = np.minimum(caster_hi[over].max(axis=0), view_hi)
     near = float(caster_near[over].min())
     receiver_far = receiver_far if visible is None else receiver_far[visible]
     far = max(float(caster_far[over].max()), float(receiver_far.max()))
-    return _fit_around(rotation, fit_lo, fit_hi, near, far, resolution)
+    return fit_lo, fit_hi, near, far
 
 
 def _fit_around(
@@ -656,11 +755,13 @@ def _fit_around(
     near: float,
     far: float,
     resolution: int,
+    pivot: np.ndarray | None = None,
 ) -> SunFit:
     """Return the map holding a region across the light (light axes), ``near`` to ``far`` along.
 
-    Its size rounded up to one of ``SIZE_STEPS_PER_OCTAVE`` per octave, its
-    centre snapped to its texels, its depths to a sixteenth of their range.
+    The region is measured from ``pivot`` (from the world's origin without
+    one). Its size rounded up to one of ``SIZE_STEPS_PER_OCTAVE`` per octave,
+    its centre snapped to its texels, its depths to a sixteenth of their range.
     """
     size = max(float((fit_hi - fit_lo).max()), 1e-30)
     size = 2.0 ** (math.ceil(math.log2(size) * SIZE_STEPS_PER_OCTAVE) / SIZE_STEPS_PER_OCTAVE)
@@ -674,6 +775,8 @@ def _fit_around(
     near = math.floor(near / step) * step - step
     far = math.ceil(far / step) * step + step
     origin = rotation[:3, :3].T @ np.array([center[0], center[1], near])
+    if pivot is not None:
+        origin += pivot
     return SunFit(rotation, origin, texel * resolution / 2.0, far - near, resolution)
 
 

@@ -477,6 +477,22 @@ class Snapshot:
         """World bounds of all :attr:`casters` together, ``(2, 3)`` (NaN when there are none)."""
         return self._box_round("casters_box", "caster_bounds", CASTERS)
 
+    @cached_property
+    def scene_box(self) -> np.ndarray:
+        """World bounds of every caster and receiver together, ``(2, 3)`` (NaN when none is).
+
+        Worked out from :attr:`casters_box` and :attr:`receivers_box`, which a
+        snapshot that follows patches: no pass over the actors.
+        """
+        boxes = [box for box in (self.casters_box, self.receivers_box) if np.isfinite(box).all()]
+        if not boxes:
+            return np.full((2, 3), np.nan)
+        if len(boxes) == 1:
+            return boxes[0]
+        return np.array(
+            [np.minimum(boxes[0][0], boxes[1][0]), np.maximum(boxes[0][1], boxes[1][1])]
+        )
+
     def _box_round(self, name: str, bounds_name: str, role: int) -> np.ndarray:
         """Return the box round a role's bounds, widening the parent's where it can.
 

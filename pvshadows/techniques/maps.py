@@ -26,6 +26,7 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.passes.map_depth import MapDepthPass
 from pvshadows.passes.transmittance import TranslucentCaster
 from pvshadows.scene.fitting import (
+    SUN_TURN_DEGREES,
     ConeMeasures,
     SunFit,
     cone_measures,
@@ -204,15 +205,23 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         # What the fit reads of the actors follows the light and the actors; the fit itself
         # the view too: the same ones give the same answers.
         kept = state.sun_actors
-        if kept is None or kept[0] != pose.key() or kept[1] is not actors:
-            kept = state.sun_actors = (pose.key(), actors, sun_actors(pose, context.snapshot))
-        seen_by_sun = kept[2]
-        fit_key = (pose.key(), settings.resolution, context.view.world_to_clip.tobytes())
+        key = pose.key()
+        if kept is None or kept[0] != key or kept[1] is not actors:
+            rotation = sun_rotation(pose)
+            seen = kept[2] if kept is not None and kept[1] is actors else None
+            if seen is None or not seen.holds(rotation):
+                # A light that moved reads boxes that hold while it turns a little more.
+                turning = kept is not None and kept[0] != key
+                slack = SUN_TURN_DEGREES if turning else 0.0
+                seen = sun_actors(pose, rotation, context.snapshot, slack)
+            kept = state.sun_actors = (key, actors, seen, rotation)
+        seen_by_sun, rotation = kept[2], kept[3]
+        fit_key = (key, settings.resolution, context.view.world_to_clip.tobytes())
         if state.fit_key is None or state.fit_key[0] != fit_key or state.fit_key[1] is not actors:
             state.fitted = (
                 None
                 if seen_by_sun is None
-                else sun_fit(seen_by_sun, context.view.clip_to_world, settings.resolution)
+                else sun_fit(seen_by_sun, rotation, context.view.clip_to_world, settings.resolution)
             )
             state.fit_key = (fit_key, actors)
         fit: SunFit | None = state.fitted
@@ -220,7 +229,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         if fit is None:
             state.key = None
             state.drop_companion()
-            state.world_to_light = sun_rotation(pose)
+            state.world_to_light = rotation
             state.params = (1.0, 1.0, 1.0, 0.0)
             return [PassReport("map depth", "skipped", "no caster can shadow a visible receiver")]
         if state.fit is not None and state.fit.covers(fit):
