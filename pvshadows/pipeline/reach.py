@@ -119,10 +119,9 @@ def cover_holds(cover: LightPose, pose: LightPose) -> bool:
     >>> cover_holds(cover, spot), cover_holds(cover, turned)
     (True, False)
     """
-    axis = cover.direction.tolist()
-    cosine = min(1.0, sum(a * b for a, b in zip(axis, pose.direction.tolist(), strict=True)))
-    if math.degrees(math.acos(cosine)) + pose.cone_angle > cover.cone_angle:
+    if cover.degrees_from(pose) + pose.cone_angle > cover.cone_angle:
         return False
+    axis = cover.direction.tolist()
     offset = [p - a for p, a in zip(pose.position.tolist(), cover.position.tolist(), strict=True)]
     along = sum(o * a for o, a in zip(offset, axis, strict=True))
     return along >= math.hypot(*offset) * math.cos(math.radians(cover.cone_angle))

@@ -68,7 +68,7 @@ def spot_fit(
     near: float,
     far: float,
     spread: float | None = None,
-    axis: np.ndarray | None = None,
+    about: LightPose | None = None,
 ) -> SpotFit:
     """Return the perspective map holding a spot light's cone, or the casters in it.
 
@@ -85,10 +85,10 @@ def spot_fit(
         shadow a receiver: when they all lie in front of the light, the map
         holds only them (its texels are then finer than the cone's); when
         not (infinite) or not given, the whole cone.
-    axis : numpy.ndarray, optional
-        Unit direction the map looks along (the light's by default): the
-        one ``spread`` was measured about, which the light may have turned
-        from since (:class:`pvshadows.scene.measures.CasterMeasureCache`).
+    about : LightPose, optional
+        The pose whose direction the map looks along (the light's by
+        default): the one ``spread`` was measured about, which the light may
+        have turned from since (:class:`pvshadows.scene.measures.CasterMeasureCache`).
         The whole cone is then held about it: its angle grows by the turn.
 
     Returns
@@ -105,17 +105,14 @@ def spot_fit(
     >>> fit = spot_fit(pose, 1000, 0.1, 10.0)
     >>> round(fit.texel, 4)
     0.002
-    >>> tilted = np.array([np.sin(np.radians(1.0)), 0.0, -np.cos(np.radians(1.0))])
-    >>> round(spot_fit(pose, 1000, 0.1, 10.0, axis=tilted).texel / fit.texel, 3)  # tan 46°/tan 45°
+    >>> tilt = np.array([np.sin(np.radians(1.0)), 0.0, -np.cos(np.radians(1.0))])
+    >>> tilted = LightPose(LightKind.SPOT, np.zeros(3), tilt, 45.0)
+    >>> round(spot_fit(pose, 1000, 0.1, 10.0, about=tilted).texel / fit.texel, 3)  # tan 46°/tan 45°
     1.036
     """
-    direction = pose.direction.tolist()
-    along = direction if axis is None else axis.tolist()
-    rotation = _rotation_along(tuple(along))
-    turned = 0.0
-    if along != direction:
-        cosine = sum(a * b for a, b in zip(along, direction, strict=True))
-        turned = math.degrees(math.acos(max(-1.0, min(1.0, cosine))))
+    about = pose if about is None else about
+    rotation = _spot_rotation(about)
+    turned = 0.0 if about is pose else pose.degrees_from(about)
     cone = math.tan(math.radians(min(pose.cone_angle + turned, 89.0)))
     half = cone if spread is None else min(cone, spread)
     half *= 1.0 + 2.0 * MARGIN_TEXELS / resolution

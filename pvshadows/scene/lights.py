@@ -84,6 +84,35 @@ class LightPose:
     def _key(self) -> tuple:
         return (self.kind, *self.position.tolist(), *self.direction.tolist(), self.cone_angle)
 
+    def degrees_from(self, other: LightPose) -> float:
+        """Return the angle between this pose's direction and another's, in degrees.
+
+        Parameters
+        ----------
+        other : LightPose
+            The other pose.
+
+        Returns
+        -------
+        float
+            From 0 (the same direction) to 180.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from pvshadows.scene.lights import LightKind, LightPose
+        >>> down = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 30.0)
+        >>> aside = LightPose(LightKind.SPOT, np.zeros(3), np.array([1.0, 0, 0]), 30.0)
+        >>> down.degrees_from(aside)
+        90.0
+        """
+        # Unit three-vectors in plain floats: numpy's calls cost more than the sums.
+        mine, theirs = self.direction.tolist(), other.direction.tolist()
+        if mine == theirs:
+            return 0.0  # not the few ulps of arccos near 1
+        cosine = sum(a * b for a, b in zip(mine, theirs, strict=True))
+        return math.degrees(math.acos(max(-1.0, min(1.0, cosine))))
+
     def homogeneous(self) -> np.ndarray:
         """Return the light as a homogeneous world 4-vector, in the one sign convention used.
 

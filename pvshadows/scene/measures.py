@@ -168,7 +168,7 @@ class CasterMeasureCache(Generic[MeasuresT]):
             return False
         if not self._turns:
             return True
-        return _turn_degrees(base, pose) <= TURN_DEGREES
+        return base.degrees_from(pose) <= TURN_DEGREES
 
     def _brought_to(self, snapshot: Snapshot) -> MeasuresT | None:
         """Return the kept measures brought up to ``snapshot``, or ``None`` if it is not theirs."""
@@ -202,12 +202,6 @@ class CasterMeasureCache(Generic[MeasuresT]):
 
 def _distance(a: LightPose, b: LightPose) -> float:
     return math.dist(a.position.tolist(), b.position.tolist())
-
-
-def _turn_degrees(a: LightPose, b: LightPose) -> float:
-    """Degrees between two poses' directions (unit vectors)."""
-    cosine = sum(x * y for x, y in zip(a.direction.tolist(), b.direction.tolist(), strict=True))
-    return math.degrees(math.acos(max(-1.0, min(1.0, cosine))))
 
 
 def _widened(boxes: np.ndarray, margin: float) -> np.ndarray:

@@ -175,8 +175,8 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             if not (kept and spot_fit_holds(state.fitted_for, (far, spread))):
                 # The map looks along the axis the spread was measured about: the light's
                 # own, or one it has turned from by a little since.
-                axis = measured.base.direction
-                fit = spot_fit(pose, settings.resolution, far * 1e-4, far, spread, axis)
+                about = measured.base
+                fit = spot_fit(pose, settings.resolution, far * 1e-4, far, spread, about)
                 state.world_to_light = translation(-pose.position)
                 state.light_to_clip, state.texel = fit.light_to_clip, fit.texel
                 state.fitted_for, state.fitted_about = (far, spread), measured.base
