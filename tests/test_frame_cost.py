@@ -1,5 +1,6 @@
 """A frame costs what changed: counted, not timed (the bench measures the time)."""
 
+import numpy as np
 import pytest
 import pyvista as pv
 
@@ -445,8 +446,6 @@ def test_a_snapshot_after_moved_actors_follows_the_last_and_derives_what_a_fresh
 def test_a_flat_receivers_span_after_moved_actors_is_patched_to_what_every_corner_gives():
     """Moving receivers measures again their heights over a ground that stayed: the
     same span as measuring every receiver afresh, and as every box corner gives."""
-    import numpy as np
-
     from pvshadows.scene.culling import box_corners
     from pvshadows.scene.snapshot import Snapshot
 
@@ -611,8 +610,6 @@ def test_a_spots_measures_patched_over_moved_actors_match_measures_taken_afresh(
 
 
 def test_a_snapshot_remembers_the_rows_of_its_latest_subsets_only():
-    import numpy as np
-
     from pvshadows.scene.snapshot import KEPT_SUBSETS
 
     pl, _ = crowd()
@@ -693,8 +690,6 @@ def test_a_frame_says_the_cpu_time_of_pvshadows_own_code_the_passes_within_it():
 def test_a_read_that_fails_half_way_leaves_the_next_read_right(monkeypatch):
     """An error while reading the moved actors again (the first one read, the second
     not) is not the end of them: the next read gives both where they are now."""
-    import numpy as np
-
     from pvshadows.scene.snapshot import SceneReader
 
     pl = pv.Plotter(off_screen=True)
@@ -722,11 +717,20 @@ def test_a_read_that_fails_half_way_leaves_the_next_read_right(monkeypatch):
     pl.close()
 
 
+PLACES = pytest.mark.parametrize(
+    ("scale", "offset"),
+    [(1.0, (0, 0, 0)), (1e-4, (0, 0, 0)), (1e6, (0, 0, 0)), (1.0, (1e6, 1e6, 1e6))],
+    ids=["unit", "scaled 1e-4", "scaled 1e6", "translated 1e6"],
+)
+
+
+@PLACES
 @pytest.mark.parametrize("light", ["spot", "point"])
-def test_a_light_moving_and_turning_a_little_keeps_its_shadows_right(light):
+def test_a_light_moving_and_turning_a_little_keeps_its_shadows_right(light, scale, offset):
     """Frames of a light dragged a little at a time: each draws its map again, from
-    measures taken once with a margin, and each frame's shadows match ray casting."""
-    scene = standard_scene(window_size=(240, 180), light=light)
+    measures taken once with a margin, and each frame's shadows match ray casting,
+    at every scale and far from the origin."""
+    scene = standard_scene(window_size=(240, 180), light=light, scale=scale, offset=offset)
     pl = scene.plotter
     pl.shadows.enable(lights=[scene.light], filter="hard")
     draw(pl)
@@ -735,12 +739,12 @@ def test_a_light_moving_and_turning_a_little_keeps_its_shadows_right(light):
         ._techniques["map" if light == "spot" else "cubemap"]
         ._states.values()
     )
-    x, y, z = scene.light.position
-    fx, fy, fz = scene.light.focal_point
+    position, focal_point = np.array(scene.light.position), np.array(scene.light.focal_point)
     errors = []
     for step in range(1, 4):
-        scene.light.position = (x + 0.01 * step, y - 0.005 * step, z)
-        scene.light.focal_point = (fx + 0.03 * step, fy, fz)  # about 0.3 degrees a step
+        scene.light.position = position + np.array([0.01, -0.005, 0.0]) * step * scale
+        # about 0.3 degrees a step
+        scene.light.focal_point = focal_point + np.array([0.03, 0.0, 0.0]) * step * scale
         draw(pl)
         assert pl.shadows.last_frame.passes_run == 1
         if step == 1:
@@ -751,8 +755,6 @@ def test_a_light_moving_and_turning_a_little_keeps_its_shadows_right(light):
 
 
 def test_a_suns_widened_boxes_hold_every_box_turned_within_its_slack():
-    import numpy as np
-
     from pvshadows.scene.fitting import SUN_TURN_DEGREES, sun_actors, sun_rotation
     from pvshadows.scene.lights import LightKind, LightPose
 
@@ -782,16 +784,18 @@ def test_a_suns_widened_boxes_hold_every_box_turned_within_its_slack():
     assert checked > 50
 
 
-def test_a_sun_turning_a_little_reads_its_actors_once_and_keeps_its_shadows_right():
-    scene = standard_scene(window_size=(240, 180), light="directional")
+@PLACES
+def test_a_sun_turning_a_little_reads_its_actors_once_and_keeps_its_shadows_right(scale, offset):
+    scene = standard_scene(window_size=(240, 180), light="directional", scale=scale, offset=offset)
     pl = scene.plotter
     pl.shadows.enable(lights=[scene.light], filter="hard")
     draw(pl)
     state = pl.shadows._renderers[0].technique("map")._states[vtk_id(scene.light)]
-    x, y, z = scene.light.position
+    position = np.array(scene.light.position)
     errors, read = [], []
     for step in range(1, 5):
-        scene.light.position = (x + 0.02 * step, y - 0.01 * step, z)  # about 0.1 degree a step
+        # about 0.1 degree a step
+        scene.light.position = position + np.array([0.02, -0.01, 0.0]) * step * scale
         draw(pl)
         assert pl.shadows.last_frame.passes_run == 1
         read.append(state.sun_actors[2])
