@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from pvshadows.pipeline.reach import COVER_DEGREES, cover_holds
-from pvshadows.scene.culling import boxes_in_spot
+from pvshadows.scene.culling import boxes_in_spot, widened_boxes
 from pvshadows.scene.lights import LightKind, LightPose
 
 
@@ -212,7 +212,6 @@ def test_measures_of_widened_boxes_hold_for_a_light_moved_within_the_margin(ligh
     than every box, farther than its corners, spread as wide about the kept axis, and on
     every cube face it touches from anywhere within the margin."""
     from pvshadows.scene.fitting import _rotation_along, cone_measures
-    from pvshadows.scene.measures import _widened
     from pvshadows.techniques.cubemap import cube_measures
 
     measure = cone_measures if light == "spot" else cube_measures
@@ -222,7 +221,7 @@ def test_measures_of_widened_boxes_hold_for_a_light_moved_within_the_margin(ligh
     halves = rng.uniform(0.01, 1.5, (300, 3))
     boxes = np.stack([centres - halves, centres + halves], axis=1)
     margin = 0.05
-    kept = measure(base, _widened(boxes, margin))
+    kept = measure(base, widened_boxes(boxes, margin))
     turn = _rotation_along(tuple(base.direction.tolist()))[:3, :3]
     for _ in range(20):
         step = rng.normal(size=3)

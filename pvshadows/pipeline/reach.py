@@ -1,7 +1,7 @@
 """Which actors each light reaches, kept between frames.
 
 A spot light reaches only the actors whose bounds touch its cone. The actors
-are tested against a wider cone than the light's (its *cover*: a few degrees
+are tested against a wider cone than the light's (its *cover*: a degree
 wider, its apex a little behind the light), so the answers stay right
 (conservative) while the light moves and turns a little: a light dragged or
 animated across frames tests its actors again only when its cone leaves the
@@ -33,7 +33,7 @@ COVER_BACK = 0.01
 _WIDEST_DEGREES = 89.9
 
 
-@dataclass(frozen=True)
+@dataclass
 class _Reached:
     """A spot light's answers: the cover they were tested against, on which snapshot."""
 
@@ -79,10 +79,8 @@ def light_cover(pose: LightPose, snapshot: Snapshot) -> LightPose:
     >>> cover.position.round(3).tolist(), cover.cone_angle
     ([0.0, 0.0, 0.173], 31.0)
     """
-    low, high = snapshot.scene_box.tolist()
-    size = math.dist(low, high) if math.isfinite(sum(low) + sum(high)) else 0.0
     angle = max(pose.cone_angle, min(pose.cone_angle + COVER_DEGREES, _WIDEST_DEGREES))
-    position = pose.position - (COVER_BACK * size) * pose.direction
+    position = pose.position - (COVER_BACK * snapshot.scene_size) * pose.direction
     return replace(pose, position=position, cone_angle=angle)
 
 
@@ -230,8 +228,7 @@ class ReachCache:
             return kept
         if not cover_holds(kept.cover, pose):
             return None
-        kept = replace(kept, pose_key=pose_key)
-        self._lights[light] = kept
+        kept.pose_key = pose_key
         return kept
 
     def _keep(

@@ -223,6 +223,33 @@ def box_corners(boxes: np.ndarray) -> np.ndarray:
     return np.where(_CORNERS[None], boxes[:, 1, None, :], boxes[:, 0, None, :])
 
 
+def widened_boxes(boxes: np.ndarray, margin: float) -> np.ndarray:
+    """Return boxes grown by ``margin`` on every side.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` min/max corners.
+    margin : float
+        How far each face moves out.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n, 2, 3)``: ``boxes`` itself when ``margin`` is 0, else new boxes.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.culling import widened_boxes
+    >>> widened_boxes(np.array([[[0.0, 0, 0], [1, 2, 3]]]), 0.5)[0].tolist()
+    [[-0.5, -0.5, -0.5], [1.5, 2.5, 3.5]]
+    """
+    if margin == 0.0:
+        return boxes
+    return boxes + np.array([[-margin] * 3, [margin] * 3])
+
+
 def box_offsets(boxes: np.ndarray, origin: np.ndarray) -> np.ndarray:
     """Return each box's min and max corners less a point, one coordinate per row.
 

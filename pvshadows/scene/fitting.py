@@ -23,7 +23,7 @@ from pvshadows.geometry.transforms import (
     squared_lengths,
     translation,
 )
-from pvshadows.scene.culling import CORNER_SIDES, box_corners_along, box_offsets
+from pvshadows.scene.culling import CORNER_SIDES, box_corners_along, box_offsets, widened_boxes
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import ActorState, Snapshot
 
@@ -583,7 +583,7 @@ class SunActors:
 
     @cached_property
     def regions_of_whole_scene(self) -> dict[int, SunRegion | None]:
-        """For a view that holds every receiver, :func:`_fit_over`'s region by resolution.
+        """For a view that holds every receiver, :func:`_region_over`'s region by resolution.
 
         It does not depend on the rotation (within :attr:`slack`): a light
         turning a little is fitted to it at the cost of a few floats.
@@ -648,11 +648,9 @@ def sun_actors(
         return None
     low, high = snapshot.scene_box
     pivot = 0.5 * (low + high)
-    margin = slack * 0.5 * math.dist(low.tolist(), high.tolist())
+    margin = slack * 0.5 * snapshot.scene_size
     # One pass over every actor: receivers and casters are mostly the same actors.
-    boxes = _light_boxes(rotation, snapshot.actor_bounds - pivot)
-    if margin > 0.0:
-        boxes += np.array([[-margin] * 3, [margin] * 3])
+    boxes = widened_boxes(_light_boxes(rotation, snapshot.actor_bounds - pivot), margin)
     every_caster = boxes[snapshot.caster_index]
     return SunActors(
         rotation, pivot, slack, boxes[snapshot.receiver_index], every_caster[keep], every_caster

@@ -23,6 +23,7 @@ from typing import Generic, NamedTuple, TypeVar
 
 import numpy as np
 
+from pvshadows.scene.culling import widened_boxes
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import CASTERS, Snapshot
 
@@ -183,7 +184,7 @@ class CasterMeasureCache(Generic[MeasuresT]):
         if patches:
             assert self._base is not None  # measures were taken from it
             rows = [row for row, _ in patches]
-            boxes = _widened(np.array([state.bounds for _, state in patches]), self._margin)
+            boxes = widened_boxes(np.array([state.bounds for _, state in patches]), self._margin)
             fresh = self._measure(self._base, boxes)
             pairs = zip(kept, fresh, strict=True)
             kept = kept._make(_patched(old, rows, new) for old, new in pairs)
@@ -194,7 +195,7 @@ class CasterMeasureCache(Generic[MeasuresT]):
     def _measure_all(self, pose: LightPose, snapshot: Snapshot, margin: float) -> None:
         boxes = snapshot.caster_bounds
         self.measured += len(boxes)
-        measures = self._measure(pose, _widened(boxes, margin))
+        measures = self._measure(pose, widened_boxes(boxes, margin))
         self._base, self._margin, self._snapshot, self._measures = pose, margin, snapshot, measures
         # The widened boxes are no farther than the boxes themselves.
         self._nearest = _nearest_of(measures)
@@ -202,13 +203,6 @@ class CasterMeasureCache(Generic[MeasuresT]):
 
 def _distance(a: LightPose, b: LightPose) -> float:
     return math.dist(a.position.tolist(), b.position.tolist())
-
-
-def _widened(boxes: np.ndarray, margin: float) -> np.ndarray:
-    """Return ``(n, 2, 3)`` boxes grown by ``margin`` on every side (the boxes themselves for 0)."""
-    if margin == 0.0:
-        return boxes
-    return boxes + np.array([[-margin] * 3, [margin] * 3])
 
 
 def _nearest_of(measures: NamedTuple) -> float:

@@ -493,6 +493,12 @@ class Snapshot:
             [np.minimum(boxes[0][0], boxes[1][0]), np.maximum(boxes[0][1], boxes[1][1])]
         )
 
+    @cached_property
+    def scene_size(self) -> float:
+        """The diagonal of :attr:`scene_box` (0 when there is no caster or receiver)."""
+        low, high = self.scene_box.tolist()
+        return math.dist(low, high) if math.isfinite(sum(low) + sum(high)) else 0.0
+
     def _box_round(self, name: str, bounds_name: str, role: int) -> np.ndarray:
         """Return the box round a role's bounds, widening the parent's where it can.
 
