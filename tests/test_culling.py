@@ -4,7 +4,14 @@ import numpy as np
 import pytest
 
 from pvshadows.pipeline.reach import COVER_DEGREES, cover_holds
-from pvshadows.scene.culling import boxes_in_spot, widened_boxes
+from pvshadows.scene.culling import (
+    FEW_BOXES,
+    boxes_in_frustum,
+    boxes_in_spot,
+    boxes_seen,
+    clip_planes,
+    widened_boxes,
+)
 from pvshadows.scene.lights import LightKind, LightPose
 
 
@@ -118,6 +125,34 @@ def test_one_box_tested_alone_gets_the_answer_it_gets_among_many(seed):
         assert np.array_equal(alone, together)
         inside += int(together.sum())
     assert 0 < inside < 40 * 100
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_boxes_tested_in_plain_floats_get_the_answers_numpy_gives(seed):
+    rng = np.random.default_rng(seed)
+    seen = 0
+    for _ in range(20):
+        # A random perspective camera: a projection times a random rigid view.
+        near, far, f = 0.5, 20.0, float(rng.uniform(0.5, 3.0))
+        projection = np.array(
+            [
+                [f, 0.0, 0.0, 0.0],
+                [0.0, f, 0.0, 0.0],
+                [0.0, 0.0, (far + near) / (near - far), 2 * far * near / (near - far)],
+                [0.0, 0.0, -1.0, 0.0],
+            ]
+        )
+        q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+        view = np.eye(4)
+        view[:3, :3], view[:3, 3] = q, rng.uniform(-3, 3, 3)
+        planes = clip_planes(projection @ view)
+        for count in (FEW_BOXES, FEW_BOXES + 1):
+            centres, halves = rng.uniform(-8, 8, (count, 3)), rng.uniform(0.01, 2.0, (count, 3))
+            boxes = np.stack([centres - halves, centres + halves], axis=1)
+            answers = boxes_seen(boxes, planes)
+            assert answers == boxes_in_frustum(boxes, planes).tolist()
+            seen += sum(answers)
+    assert 0 < seen < 20 * (2 * FEW_BOXES + 1)
 
 
 @pytest.mark.parametrize("seed", range(3))

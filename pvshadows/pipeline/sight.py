@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pvshadows.scene.culling import boxes_in_frustum
+from pvshadows.scene.culling import box_seen, boxes_in_frustum, boxes_seen
 
 
 class ViewSight:
@@ -63,7 +63,7 @@ class ViewSight:
         self._witnesses = {} if witnesses is None else witnesses
         low, high = whole.tolist()
         # The corners swapped, the test meets each plane's nearest corner: all inside.
-        inside = self._box_seen(high, low)
+        inside = box_seen(high, low, self._plane_rows)
         self._every = np.ones(len(bounds), dtype=bool) if inside else None
         self.tested = 0
 
@@ -90,23 +90,10 @@ class ViewSight:
         sight = ViewSight(bounds, whole, self._planes, self._witnesses)
         if sight._every is None and self._every is not None:
             every = self._every.copy()
-            every[rows] = boxes_in_frustum(bounds[rows], self._planes)
+            every[rows] = boxes_seen(bounds[rows], self._planes)
             sight._every = every
             sight.tested += len(rows)
         return sight
-
-    def _box_seen(self, low: list[float], high: list[float]) -> bool:
-        """:func:`~pvshadows.scene.culling.boxes_in_frustum` for one box, in plain floats.
-
-        One box costs numpy more in calls than in arithmetic.
-        """
-        for a, b, c, d in self._plane_rows:
-            x = high[0] if a > 0.0 else low[0]
-            y = high[1] if b > 0.0 else low[1]
-            z = high[2] if c > 0.0 else low[2]
-            if a * x + b * y + c * z + d < 0.0:
-                return False
-        return True
 
     @property
     def every(self) -> np.ndarray:
@@ -138,7 +125,8 @@ class ViewSight:
                     return True
             else:
                 self.tested += 1
-                if self._box_seen(*self._bounds[row].tolist()):
+                low, high = self._bounds[row].tolist()
+                if box_seen(low, high, self._plane_rows):
                     return True
         seen = self.every if among is None else self.every & among
         rows = np.flatnonzero(seen)

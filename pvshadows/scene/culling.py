@@ -137,6 +137,78 @@ def boxes_in_frustum(boxes: np.ndarray, planes: np.ndarray) -> np.ndarray:
     return np.all(distance >= 0.0, axis=1)
 
 
+#: Up to this many boxes, :func:`boxes_seen` tests them in plain floats: numpy's
+#: calls cost more than their arithmetic.
+FEW_BOXES = 32
+
+
+def box_seen(
+    low: list[float], high: list[float], planes: list[tuple[float, float, float, float]]
+) -> bool:
+    """Test one box against a frustum in plain floats, like :func:`boxes_in_frustum`.
+
+    Parameters
+    ----------
+    low, high : list of float
+        The box's min and max corners.
+    planes : list of tuple
+        The frustum's planes as rows of four floats (``planes.tolist()``).
+
+    Returns
+    -------
+    bool
+        ``False`` only for a box wholly outside one plane.
+
+    Examples
+    --------
+    >>> import vtk
+    >>> from pvshadows.scene.culling import box_seen, frustum_planes
+    >>> planes = frustum_planes(vtk.vtkCamera(), 1.0).tolist()  # at z = 1, looking down -z
+    >>> box_seen([-0.1, -0.1, -1.0], [0.1, 0.1, -0.5], planes)
+    True
+    >>> box_seen([0.0, 0.0, 2.0], [1.0, 1.0, 3.0], planes)
+    False
+    """
+    for a, b, c, d in planes:
+        x = high[0] if a > 0.0 else low[0]
+        y = high[1] if b > 0.0 else low[1]
+        z = high[2] if c > 0.0 else low[2]
+        if a * x + b * y + c * z + d < 0.0:
+            return False
+    return True
+
+
+def boxes_seen(boxes: np.ndarray, planes: np.ndarray) -> list[bool]:
+    """Return :func:`boxes_in_frustum` as a list, testing a few boxes in plain floats.
+
+    Parameters
+    ----------
+    boxes : numpy.ndarray
+        ``(n, 2, 3)`` min/max corners.
+    planes : numpy.ndarray
+        ``(6, 4)`` frustum planes from :func:`frustum_planes`.
+
+    Returns
+    -------
+    list of bool
+        ``False`` only for boxes wholly outside one plane; the same answers
+        whichever way they are tested.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import vtk
+    >>> from pvshadows.scene.culling import boxes_seen, frustum_planes
+    >>> boxes = np.array([[[-0.1, -0.1, -1.0], [0.1, 0.1, -0.5]], [[0, 0, 2], [1, 1, 3]]])
+    >>> boxes_seen(boxes, frustum_planes(vtk.vtkCamera(), 1.0))
+    [True, False]
+    """
+    if len(boxes) > FEW_BOXES:
+        return boxes_in_frustum(boxes, planes).tolist()
+    rows = planes.tolist()
+    return [box_seen(low, high, rows) for low, high in np.asarray(boxes).tolist()]
+
+
 def box_in_spot(box: np.ndarray, pose: LightPose) -> bool:
     """Return whether a world box may touch a spot light's cone (conservative).
 

@@ -26,7 +26,7 @@ import numpy as np
 from vtkmodules.util.misc import calldata_type
 
 from pvshadows import _vtk as vtk
-from pvshadows.scene.culling import boxes_in_frustum
+from pvshadows.scene.culling import boxes_seen
 
 #: VTK's replacement tags: the shader cache substitutes or keeps them, so they
 #: are not looked for.
@@ -365,13 +365,13 @@ class WaitingChecks:
         elif same_view:  # the others were out of this view at the last try
             candidates = sorted(rows[key] for key in self._untested if key in rows)
             self.tested += len(candidates)
-            seen = boxes_in_frustum(stacked[candidates], planes).tolist()
+            seen = boxes_seen(stacked[candidates], planes)
             boxed = [keys[row] for row, hit in zip(candidates, seen, strict=True) if hit]
             tried = [key for key in unboxed if key in self._untested] + boxed
         else:
             self.tested += len(keys)
-            seen_rows = np.flatnonzero(boxes_in_frustum(stacked, planes)).tolist()
-            tried = unboxed + [keys[row] for row in seen_rows]
+            seen = boxes_seen(stacked, planes)
+            tried = unboxed + [key for key, hit in zip(keys, seen, strict=True) if hit]
         self.tries += len(tried)
         attached = [key for key in tried if self._waiting[key][0].attach()]
         for key in attached:
