@@ -74,38 +74,8 @@ def clip_planes(m: np.ndarray) -> np.ndarray:
     return _PLANE_ROWS @ m
 
 
-def box_in_frustum(box: np.ndarray, planes: np.ndarray) -> bool:
-    """Return whether a world box may be seen (conservative: never misses one that is).
-
-    Parameters
-    ----------
-    box : numpy.ndarray
-        ``(2, 3)`` min/max corners.
-    planes : numpy.ndarray
-        ``(6, 4)`` frustum planes from :func:`frustum_planes`.
-
-    Returns
-    -------
-    bool
-        ``False`` only when the box is wholly outside one plane.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> import vtk
-    >>> from pvshadows.scene.culling import box_in_frustum, frustum_planes
-    >>> camera = vtk.vtkCamera()  # at (0, 0, 1) looking down -z
-    >>> planes = frustum_planes(camera, 1.0)
-    >>> box_in_frustum(np.array([[-0.1, -0.1, -1.0], [0.1, 0.1, -0.5]]), planes)
-    True
-    >>> box_in_frustum(np.array([[-0.1, -0.1, 2.0], [0.1, 0.1, 3.0]]), planes)
-    False
-    """
-    return bool(boxes_in_frustum(np.asarray(box)[None], planes)[0])
-
-
 def boxes_in_frustum(boxes: np.ndarray, planes: np.ndarray) -> np.ndarray:
-    """Test many world boxes against a frustum at once, like :func:`box_in_frustum`.
+    """Test many world boxes against a frustum at once (conservative: never misses one seen).
 
     Parameters
     ----------
