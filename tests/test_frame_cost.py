@@ -216,30 +216,7 @@ def test_receivers_never_drawn_are_tried_for_a_watch_only_where_the_view_meets_t
     draw(pl)
     draw(pl)
     assert not edits.waiting
-    assert all(edits.of(key).check.checked for key in waiting)
-
-
-def test_receivers_drawn_with_one_program_read_its_source_once(monkeypatch):
-    """VTK draws identical receivers with one program: its source is searched for the
-    edits once between them, not once per receiver, and each still knows its verdict."""
-    import pvshadows.shaders.landing as landing
-
-    monkeypatch.setattr(landing, "_VERDICTS", {})
-    searched = []
-    search = landing.missing_edits
-    monkeypatch.setattr(
-        landing, "missing_edits", lambda edits, source: searched.append(1) or search(edits, source)
-    )
-    pl = pv.Plotter(off_screen=True, window_size=(160, 120))
-    spheres = [pl.add_mesh(pv.Sphere(radius=0.3, center=(x, 0.0, 0.5))) for x in range(-2, 3)]
-    pl.add_light(pv.Light(position=(0, 0, 6), light_type="scene light", positional=True))
-    pl.shadows.enable(filter="hard")
-    draw(pl)
-    draw(pl)
-    edits = pl.shadows._renderers[0]._edits
-    checks = [edits.of(vtk_id(sphere)).check for sphere in spheres]
-    assert all(check.checked == 1 and check.missing == [] for check in checks)
-    assert len(searched) == 1
+    assert all(edits.of(key).check.settled for key in waiting)
 
 
 def test_disabling_removes_every_observer_from_the_actors():

@@ -31,7 +31,7 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.gl.sampler_units import SamplerUnits
 from pvshadows.scene.snapshot import ActorState, Snapshot
-from pvshadows.shaders.landing import WaitingChecks
+from pvshadows.shaders.landing import WaitingChecks, Watchers
 from pvshadows.shaders.shading import (
     LightShading,
     ShaderEdits,
@@ -113,6 +113,8 @@ class ReceiverEdits:
         self._flagged: set[str] = set()
         #: Receivers whose programs cannot be watched yet (no OpenGL mapper before a first draw).
         self.waiting = WaitingChecks()
+        #: The receiver whose mapper is watched for each shader variant and edits.
+        self._watchers = Watchers()
         #: The lights' uniform values of the last frame (nothing to send when they are the same).
         self._given: dict[str, object] = {}
         self._problems: dict[str, str] = {}
@@ -159,6 +161,7 @@ class ReceiverEdits:
         """
         light_space = light_space or []
         lit_points = lit_points or set()
+        self._watchers.hand_over_unseen(planes)
         self.waiting.try_in_view(planes)
         flagged, self._flagged = self._flagged, set()
         same = (
@@ -369,7 +372,7 @@ class ReceiverEdits:
 
     def _edits_of(self, actor: vtk.vtkActor, key: str) -> ShaderEdits:
         if key not in self._edits:
-            edits = ShaderEdits(actor)
+            edits = ShaderEdits(actor, self._watchers)
             edits.check.notify = lambda: self._flagged.add(key)
             self._edits[key] = edits
         return self._edits[key]

@@ -7,7 +7,11 @@ program VTK draws a receiver with after each change of its edits (its
 mapper's ``UpdateShaderEvent`` hands it over) is read once, and each edit is
 looked for in its fragment source (once between the receivers VTK draws
 with the same program and edits); then the receiver costs no call per
-frame.
+frame. Receivers whose shaders VTK writes alike
+(:func:`~pvshadows.shaders.variant.shader_variant`) and that carry the same
+edits are drawn with one program: one of them is watched and the others
+take its verdict (:class:`Watchers`), because an observer leaves VTK
+walking the mapper's observer list at every draw, for good.
 An edit counts as required unless the variant legitimately lacks its place:
 a light's hooks only where VTK's code shades with that light, the facet normal
 only where the variant computes a view position.
@@ -20,13 +24,14 @@ can be left exactly as VTK built it.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Hashable, Iterator, Sequence
 
 import numpy as np
 from vtkmodules.util.misc import calldata_type
 
 from pvshadows import _vtk as vtk
 from pvshadows.scene.culling import boxes_seen
+from pvshadows.shaders.variant import shader_variant
 
 #: VTK's replacement tags: the shader cache substitutes or keeps them, so they
 #: are not looked for.
@@ -123,12 +128,23 @@ def opengl_mapper(actor: vtk.vtkActor) -> vtk.vtkMapper | None:
 
 
 class LandingCheck:
-    """Reads each program VTK compiles for one receiver and checks the edits in it.
+    """Reads the program VTK compiles for one receiver and checks the edits in it.
+
+    VTK draws actors whose shaders it writes alike with one program, so
+    receivers of one renderer with the same :func:`~pvshadows.shaders.variant.shader_variant`
+    and the same edits share one reading: the first of them whose mapper
+    exists watches it (the *watcher*), the others follow its verdict and put
+    no observer on their own mapper (an observer, even removed, leaves VTK
+    walking an observer list at every draw of that mapper).
 
     Parameters
     ----------
     actor : vtk.vtkActor
         The receiver.
+    watchers : Watchers, optional
+        The watcher of each shader variant and edits in the receiver's
+        renderer, shared by the checks of its receivers; without it the
+        check watches its own mapper.
 
     Attributes
     ----------
@@ -137,19 +153,34 @@ class LandingCheck:
     failed : bool
         Whether a program with the edits failed to compile since :meth:`expect`.
     checked : int
-        Programs read so far.
+        Programs this check read so far (a follower reads none).
+    settled : bool
+        Whether a program with the current edits was read, by this check or
+        by the watcher it follows.
     notify : callable or None
         Called with no argument whenever :attr:`missing` or :attr:`failed`
-        changes, so that an owner keeps no per-frame watch over every receiver.
+        changes, or the watcher this check followed left before it read a
+        program (then the owner applies the edits again, which finds a new
+        one), so that an owner keeps no per-frame watch over every receiver.
     """
 
-    def __init__(self, actor: vtk.vtkActor) -> None:
+    def __init__(self, actor: vtk.vtkActor, watchers: Watchers | None = None) -> None:
         self.actor = actor
         self.missing: list[str] = []
         self.failed = False
         self.checked = 0
+        self.settled = False
         self.notify: Callable[[], None] | None = None
         self._edits: list[tuple[str, str]] = []
+        self._variant: Hashable = None
+        #: What decided the variant last read, and that variant.
+        self._stamp: tuple | None = None
+        self._read_variant: Hashable = None
+        self._watchers = Watchers() if watchers is None else watchers
+        #: The frame (of :attr:`_watchers`) in which this check began to watch for others.
+        self._watching_since = 0
+        self._watcher: LandingCheck | None = None
+        self._followers: list[LandingCheck] = []
         self._seen: set[str] = set()
         self._mapper: vtk.vtkMapper | None = None
         self._error_tag: int | None = None
@@ -164,28 +195,76 @@ class LandingCheck:
             The ``(original, replacement)`` pairs now on the shader property.
         """
         if edits != self._edits:
-            self._edits = list(edits)
-            self._seen.clear()
-            self.missing = []
-            self.failed = False
+            self._reset(edits, self._variant)
         self.attach()
 
+    def _reset(self, edits: list[tuple[str, str]], variant: Hashable) -> None:
+        """Forget the verdict: the edits or the variant changed."""
+        self._leave()
+        self._edits = list(edits)
+        self._variant = variant
+        self._seen.clear()
+        self.missing = []
+        self.failed = False
+        self.settled = False
+
+    def _shader_variant(self) -> Hashable:
+        """Return the actor's :func:`shader_variant`, read again only where its inputs changed."""
+        actor = self.actor
+        mapper = vtk.vtkActor.GetMapper(actor)
+        if mapper is None:
+            return None
+        data = mapper.GetInputDataObject(0, 0)
+        stamp = (
+            id(mapper),
+            mapper.GetMTime(),
+            None if data is None else (id(data), data.GetMTime()),
+            actor.GetProperty().GetMTime(),
+            actor.GetShaderProperty().GetMTime(),
+            actor.GetBackfaceProperty(),
+            actor.GetTexture(),
+            actor.GetForceOpaque(),
+            actor.GetForceTranslucent(),
+        )
+        if stamp != self._stamp:
+            self._stamp = stamp
+            self._read_variant = shader_variant(actor)
+        return self._read_variant
+
+    def _key(self) -> Hashable:
+        if self._variant is None or not self._edits:
+            return None
+        return (self._variant, tuple(self._edits))
+
     def attach(self) -> bool:
-        """Watch the actor's OpenGL mapper; return whether it exists yet.
+        """Watch the actor's OpenGL mapper, or follow the watcher of its kind; return whether done.
 
         Its compile errors are watched for as long as the check lives; its
         program only until the next draw has handed it over and it was
         checked (VTK hands it over at every draw, so a Python call per
         receiver per frame would be the price of watching longer). A
         ``vtkDataSetMapper`` makes its inner mapper during its first render,
-        so an actor edited before then is watched from the next frame on.
+        so an actor edited before then is watched from the next frame on,
+        unless a receiver of the same kind is watched already.
 
         Returns
         -------
         bool
-            ``True`` once the mapper is watched.
+            ``True`` once the mapper is watched or the check follows a watcher.
         """
         mapper = opengl_mapper(self.actor)
+        if mapper is None and self._watcher is None and not self._watchers:
+            return False  # nothing to watch nor to follow yet: the variant can wait
+        variant = self._shader_variant()
+        if variant != self._variant:
+            self._reset(self._edits, variant)
+        if self._watcher is not None:
+            return True
+        key = self._key()
+        watcher = self._watchers.get(key) if key is not None else None
+        if watcher is not None and watcher is not self:
+            self._follow(watcher)
+            return True
         if mapper is None:
             return False
         if id(mapper) != id(self._mapper):  # (``is`` would narrow ``mapper`` to Optional)
@@ -196,7 +275,60 @@ class LandingCheck:
             self._program_tag = mapper.AddObserver(
                 vtk.vtkCommand.UpdateShaderEvent, self._on_program
             )
+        if key is not None and self._watchers.get(key) is not self:
+            self._watchers.register(key, self)
         return True
+
+    def _follow(self, watcher: LandingCheck) -> None:
+        self._watcher = watcher
+        watcher._followers.append(self)
+        if watcher.settled or watcher.failed:
+            self._take(watcher)
+
+    def _take(self, watcher: LandingCheck) -> None:
+        """Take the watcher's verdict; tell the owner where it changed."""
+        changed = watcher.missing != self.missing or watcher.failed != self.failed
+        self.missing, self.failed = list(watcher.missing), watcher.failed
+        self.settled = watcher.settled
+        if changed:
+            self._changed()
+
+    def _leave(self) -> None:
+        """Stop following a watcher, or stop watching for others (unsettled followers are told)."""
+        if self._watcher is not None:
+            self._watcher._followers.remove(self)
+            self._watcher = None
+        key = self._key()
+        if key is not None and self._watchers.get(key) is self:
+            self._watchers.drop(key)
+        followers, self._followers = self._followers, []
+        for follower in followers:
+            follower._watcher = None
+            if not (follower.settled or follower.failed):
+                follower._changed()
+
+    def hand_over(self, successor: LandingCheck) -> None:
+        """Give the watch to ``successor``, one of this check's followers whose mapper exists.
+
+        This check and the other followers follow it from then on.
+
+        Parameters
+        ----------
+        successor : LandingCheck
+            The follower that watches its own mapper from now on.
+        """
+        key = self._key()
+        others = [check for check in self._followers if check is not successor] + [self]
+        self._followers = []
+        successor._watcher = None
+        self._watchers.drop(key)
+        if self._mapper is not None and self._program_tag is not None:
+            self._mapper.RemoveObserver(self._program_tag)
+            self._program_tag = None
+        successor.attach()
+        for check in others:
+            check._watcher = None
+            check._follow(successor)
 
     @calldata_type(vtk.VTK_OBJECT)
     def _on_program(self, mapper: vtk.vtkMapper, event: str, program: vtk.vtkShaderProgram) -> None:
@@ -219,9 +351,14 @@ class LandingCheck:
                 _VERDICTS.clear()
             _VERDICTS[verdict_key] = verdict
         missing = list(verdict)
+        news = missing != self.missing or not self.settled
+        self.settled = True
         if missing != self.missing:
             self.missing = missing
             self._changed()
+        if news:
+            for follower in self._followers:
+                follower._take(self)
 
     @calldata_type(vtk.VTK_STRING)
     def _on_error(self, mapper: vtk.vtkMapper, event: str, message: str) -> None:
@@ -229,6 +366,8 @@ class LandingCheck:
             if not self.failed:
                 self.failed = True
                 self._changed()
+                for follower in self._followers:
+                    follower._take(self)
         elif message:
             vtk.vtkOutputWindow.GetInstance().DisplayErrorText(message)
 
@@ -237,13 +376,83 @@ class LandingCheck:
             self.notify()
 
     def release(self) -> None:
-        """Remove the observers from the mapper."""
+        """Remove the observers from the mapper, and stop following or watching for others."""
+        self._leave()
         if self._mapper is not None:
             for tag in (self._error_tag, self._program_tag):
                 if tag is not None:
                     self._mapper.RemoveObserver(tag)
         self._mapper = None
         self._error_tag = self._program_tag = None
+
+
+class Watchers:
+    """The landing check watching a program for each shader variant and edits of one renderer.
+
+    A watcher VTK did not draw in the frame it began to watch in (out of the
+    view's frustum) hands the watch to a follower the view meets, so that
+    receivers VTK draws are not left waiting for one it does not.
+
+    Attributes
+    ----------
+    frame : int
+        Frames begun (calls of :meth:`hand_over_unseen`).
+    handed_over : int
+        Watches handed to a follower so far.
+
+    Examples
+    --------
+    >>> from pvshadows.shaders.landing import Watchers
+    >>> watchers = Watchers()
+    >>> watchers.hand_over_unseen(None)
+    >>> watchers.frame, len(watchers)
+    (1, 0)
+    """
+
+    def __init__(self) -> None:
+        self._by_key: dict[Hashable, LandingCheck] = {}
+        self.frame = 0
+        self.handed_over = 0
+
+    def __len__(self) -> int:
+        return len(self._by_key)
+
+    def get(self, key: Hashable) -> LandingCheck | None:
+        """Return the watcher of ``key`` (a shader variant and its edits), or ``None``."""
+        return self._by_key.get(key)
+
+    def register(self, key: Hashable, check: LandingCheck) -> None:
+        """Make ``check`` the watcher of ``key`` from this frame on."""
+        self._by_key[key] = check
+        check._watching_since = self.frame
+
+    def drop(self, key: Hashable) -> None:
+        """Forget the watcher of ``key``."""
+        self._by_key.pop(key, None)
+
+    def hand_over_unseen(self, planes: np.ndarray | None) -> None:
+        """Begin a frame: move each watch still unread since an earlier frame to a follower in view.
+
+        Parameters
+        ----------
+        planes : numpy.ndarray or None
+            ``(6, 4)`` the view's frustum planes; ``None`` takes any
+            follower whose mapper exists.
+        """
+        self.frame += 1
+        for check in list(self._by_key.values()):
+            if check.settled or check.failed or check._watching_since >= self.frame:
+                continue
+            drawn = [f for f in check._followers if opengl_mapper(f.actor) is not None]
+            if drawn and planes is not None:
+                bounds = np.array([vtk.vtkActor.GetBounds(f.actor) for f in drawn])
+                boxes = bounds.reshape(-1, 3, 2).transpose(0, 2, 1)
+                drawn = [
+                    f for f, seen in zip(drawn, boxes_seen(boxes, planes), strict=True) if seen
+                ]
+            if drawn:
+                check.hand_over(drawn[0])
+                self.handed_over += 1
 
 
 class WaitingChecks:

@@ -30,7 +30,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import column_major
 from pvshadows.gl.programs import glsl_source
 from pvshadows.gl.sampler_units import BINDING_EXTENSION
-from pvshadows.shaders.landing import LandingCheck
+from pvshadows.shaders.landing import LandingCheck, Watchers
 from pvshadows.shaders.library import (
     MapLookup,
     extensions,
@@ -394,15 +394,18 @@ class ShaderEdits:
     ----------
     actor : vtk.vtkActor
         The actor whose shader property is edited.
+    watchers : Watchers, optional
+        The landing checks watching a program for the receivers of the
+        actor's renderer (see :class:`~pvshadows.shaders.landing.LandingCheck`).
     """
 
-    def __init__(self, actor: vtk.vtkActor) -> None:
+    def __init__(self, actor: vtk.vtkActor, watchers: Watchers | None = None) -> None:
         self.actor = actor
         self._edits: list[tuple[str, str]] = []
         self._uniforms: set[str] = set()
         self._refused: list[tuple[str, str]] | None = None
-        #: Checks each program VTK compiles for the actor against the edits.
-        self.check = LandingCheck(actor)
+        #: Checks the program VTK compiles for the actor against the edits.
+        self.check = LandingCheck(actor, watchers)
 
     def apply(self, edits: list[tuple[str, str]]) -> None:
         """Make the actor's pvshadows edits exactly ``edits`` (a no-op when unchanged).
