@@ -391,7 +391,9 @@ class Watchers:
 
     A watcher VTK did not draw in the frame it began to watch in (out of the
     view's frustum) hands the watch to a follower the view meets, so that
-    receivers VTK draws are not left waiting for one it does not.
+    receivers VTK draws are not left waiting for one it does not. A watcher
+    in view keeps its watch: handing it round would put an observer on
+    every mapper in turn.
 
     Attributes
     ----------
@@ -431,27 +433,33 @@ class Watchers:
         self._by_key.pop(key, None)
 
     def hand_over_unseen(self, planes: np.ndarray | None) -> None:
-        """Begin a frame: move each watch still unread since an earlier frame to a follower in view.
+        """Begin a frame: move each watch unread since an earlier frame to a follower in view.
+
+        Only a watcher out of the view's frustum hands its watch over (VTK
+        did not draw it); one in view, still unread, keeps it.
 
         Parameters
         ----------
         planes : numpy.ndarray or None
-            ``(6, 4)`` the view's frustum planes; ``None`` takes any
-            follower whose mapper exists.
+            ``(6, 4)`` the view's frustum planes; ``None`` (no view known)
+            hands nothing over.
         """
         self.frame += 1
+        if planes is None:
+            return
         for check in list(self._by_key.values()):
             if check.settled or check.failed or check._watching_since >= self.frame:
                 continue
             drawn = [f for f in check._followers if opengl_mapper(f.actor) is not None]
-            if drawn and planes is not None:
-                bounds = np.array([vtk.vtkActor.GetBounds(f.actor) for f in drawn])
-                boxes = bounds.reshape(-1, 3, 2).transpose(0, 2, 1)
-                drawn = [
-                    f for f, seen in zip(drawn, boxes_seen(boxes, planes), strict=True) if seen
-                ]
-            if drawn:
-                check.hand_over(drawn[0])
+            if not drawn:
+                continue
+            bounds = np.array([vtk.vtkActor.GetBounds(c.actor) for c in [check, *drawn]])
+            seen = boxes_seen(bounds.reshape(-1, 3, 2).transpose(0, 2, 1), planes)
+            if seen[0]:
+                continue
+            in_view = [f for f, sees in zip(drawn, seen[1:], strict=True) if sees]
+            if in_view:
+                check.hand_over(in_view[0])
                 self.handed_over += 1
 
 
