@@ -210,3 +210,29 @@ def test_removing_the_watcher_leaves_its_followers_settled():
     rest = [sphere for sphere in spheres if sphere is not watched[0]]
     assert all(check.settled for check in _checks(pl, rest))
     assert pl.shadows.last_frame.receivers == []
+
+
+def test_an_unread_watcher_costs_one_box_test_per_new_view(monkeypatch):
+    """Nothing alike in view: the watch stays, its boxes are tested once per view, not per frame."""
+    tested = []
+    seen = landing.boxes_seen
+    monkeypatch.setattr(
+        landing,
+        "boxes_seen",
+        lambda boxes, planes: tested.append(len(boxes)) or seen(boxes, planes),
+    )
+    pl, spheres = _spheres(5, spacing=6.0)
+    pl.camera_position = [(0.0, -30.0, 20.0), (0.0, 0.0, 0.5), (0.0, 0.0, 1.0)]
+    draw(pl)  # every sphere drawn once: each has its OpenGL mapper
+    pl.camera_position = [(0.0, 30.0, 3.0), (0.0, 60.0, 3.0), (0.0, 0.0, 1.0)]  # away from all
+    pl.shadows.enable(filter="hard")
+    for _ in range(4):
+        draw(pl)
+    watchers = pl.shadows._renderers[0]._edits._watchers
+    assert watchers.handed_over == 0 and tested.count(5) == 1  # the watcher and 4 followers
+    checks = _checks(pl, spheres)
+    assert not any(check.settled for check in checks)
+    pl.camera_position = [(6.0, -3.0, 3.0), (6.0, 0.0, 0.5), (0.0, 0.0, 1.0)]  # sphere 3 in view
+    draw(pl)
+    assert watchers.handed_over == 1
+    assert all(check.settled for check in checks)

@@ -181,6 +181,8 @@ class LandingCheck:
         self._watching_since = 0
         self._watcher: LandingCheck | None = None
         self._followers: list[LandingCheck] = []
+        #: Counts changes of ``_followers`` (their boxes are kept while it holds).
+        self._followers_changed = 0
         self._seen: set[str] = set()
         self._mapper: vtk.vtkMapper | None = None
         self._error_tag: int | None = None
@@ -282,6 +284,7 @@ class LandingCheck:
     def _follow(self, watcher: LandingCheck) -> None:
         self._watcher = watcher
         watcher._followers.append(self)
+        watcher._followers_changed += 1
         if watcher.settled or watcher.failed:
             self._take(watcher)
 
@@ -297,11 +300,13 @@ class LandingCheck:
         """Stop following a watcher, or stop watching for others (unsettled followers are told)."""
         if self._watcher is not None:
             self._watcher._followers.remove(self)
+            self._watcher._followers_changed += 1
             self._watcher = None
         key = self._key()
         if key is not None and self._watchers.get(key) is self:
             self._watchers.drop(key)
         followers, self._followers = self._followers, []
+        self._followers_changed += 1
         for follower in followers:
             follower._watcher = None
             if not (follower.settled or follower.failed):
@@ -320,6 +325,7 @@ class LandingCheck:
         key = self._key()
         others = [check for check in self._followers if check is not successor] + [self]
         self._followers = []
+        self._followers_changed += 1
         successor._watcher = None
         self._watchers.drop(key)
         if self._mapper is not None and self._program_tag is not None:
@@ -350,7 +356,12 @@ class LandingCheck:
             if len(_VERDICTS) >= _VERDICTS_KEPT:
                 _VERDICTS.clear()
             _VERDICTS[verdict_key] = verdict
-        missing = list(verdict)
+        # A follower still watching from before (a watch handed over, edits changed)
+        # reads its kind's program: the verdict is its watcher's too.
+        (self if self._watcher is None else self._watcher)._settle(list(verdict))
+
+    def _settle(self, missing: list[str]) -> None:
+        """Take the verdict of a program read with the edits; pass it to the followers."""
         news = missing != self.missing or not self.settled
         self.settled = True
         if missing != self.missing:
@@ -363,13 +374,17 @@ class LandingCheck:
     @calldata_type(vtk.VTK_STRING)
     def _on_error(self, mapper: vtk.vtkMapper, event: str, message: str) -> None:
         if self._edits and COMPILE_FAILED in (message or ""):
-            if not self.failed:
-                self.failed = True
-                self._changed()
-                for follower in self._followers:
-                    follower._take(self)
+            (self if self._watcher is None else self._watcher)._fail()
         elif message:
             vtk.vtkOutputWindow.GetInstance().DisplayErrorText(message)
+
+    def _fail(self) -> None:
+        """Note that the program with the edits did not compile; pass it to the followers."""
+        if not self.failed:
+            self.failed = True
+            self._changed()
+            for follower in self._followers:
+                follower._take(self)
 
     def _changed(self) -> None:
         if self.notify is not None:
@@ -413,6 +428,9 @@ class Watchers:
 
     def __init__(self) -> None:
         self._by_key: dict[Hashable, LandingCheck] = {}
+        #: For each watcher still unread: its followers' count of changes when their
+        #: boxes (its own first) were stacked, those boxes, and the planes last tried.
+        self._boxes: dict[LandingCheck, tuple[int, np.ndarray, np.ndarray | None]] = {}
         self.frame = 0
         self.handed_over = 0
 
@@ -430,13 +448,17 @@ class Watchers:
 
     def drop(self, key: Hashable) -> None:
         """Forget the watcher of ``key``."""
-        self._by_key.pop(key, None)
+        check = self._by_key.pop(key, None)
+        if check is not None:
+            self._boxes.pop(check, None)
 
     def hand_over_unseen(self, planes: np.ndarray | None) -> None:
         """Begin a frame: move each watch unread since an earlier frame to a follower in view.
 
         Only a watcher out of the view's frustum hands its watch over (VTK
-        did not draw it); one in view, still unread, keeps it.
+        did not draw it); one in view, still unread, keeps it. The boxes of
+        a watcher and its followers are read once while its followers stay
+        the same, and tested again only against a new view.
 
         Parameters
         ----------
@@ -449,17 +471,25 @@ class Watchers:
             return
         for check in list(self._by_key.values()):
             if check.settled or check.failed or check._watching_since >= self.frame:
+                self._boxes.pop(check, None)
                 continue
-            drawn = [f for f in check._followers if opengl_mapper(f.actor) is not None]
-            if not drawn:
+            followers = check._followers
+            kept = self._boxes.get(check)
+            if kept is None or kept[0] != check._followers_changed:
+                bounds = np.array([vtk.vtkActor.GetBounds(c.actor) for c in [check, *followers]])
+                kept = (check._followers_changed, bounds.reshape(-1, 3, 2).transpose(0, 2, 1), None)
+            elif kept[2] is planes:
+                continue  # this view was tried
+            self._boxes[check] = (kept[0], kept[1], planes)
+            if not followers:
                 continue
-            bounds = np.array([vtk.vtkActor.GetBounds(c.actor) for c in [check, *drawn]])
-            seen = boxes_seen(bounds.reshape(-1, 3, 2).transpose(0, 2, 1), planes)
+            seen = boxes_seen(kept[1], planes)
             if seen[0]:
                 continue
-            in_view = [f for f, sees in zip(drawn, seen[1:], strict=True) if sees]
-            if in_view:
-                check.hand_over(in_view[0])
+            in_view = (f for f, sees in zip(followers, seen[1:], strict=True) if sees)
+            successor = next((f for f in in_view if opengl_mapper(f.actor) is not None), None)
+            if successor is not None:
+                check.hand_over(successor)
                 self.handed_over += 1
 
 
