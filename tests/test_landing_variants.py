@@ -69,8 +69,14 @@ def test_receivers_alike_share_one_watched_program(monkeypatch):
 
 
 def test_the_variant_key_never_joins_receivers_drawn_with_different_programs():
-    """Every variant of the variants test, twice, in one scene: equal keys, equal programs."""
+    """Every variant of the variants test, twice, in one scene: equal keys, equal programs.
+
+    Depth peeling is on: a receiver whose colours are translucent (its
+    lookup table's opacity) is drawn in the translucent pass with other
+    programs than an opaque one with the same settings.
+    """
     pl = pv.Plotter(off_screen=True, window_size=(320, 240))
+    pl.enable_depth_peeling()  # its passes edit the translucent actors' shaders
     pl.add_mesh(pv.Plane(i_size=30, j_size=30), color="white")
     pl.add_light(point_light((0.0, 0.0, 12.0)))
     actors = {}
@@ -85,6 +91,10 @@ def test_the_variant_key_never_joins_receivers_drawn_with_different_programs():
             )
     actors[("translucent", 0)] = pl.add_mesh(
         pv.Sphere(radius=0.6, center=(9.0, -9.0, 1.2)), color="tan", opacity=0.5
+    )
+    coloured, keywords = VARIANTS["surface with scalars"]()  # made as that variant's copies
+    actors[("translucent colours", 0)] = pl.add_mesh(
+        coloured.translate((9.0, 3.0, 0.0)), opacity="linear", show_scalar_bar=False, **keywords
     )
     actors[("backface", 0)] = pl.add_mesh(
         pv.Sphere(radius=0.6, center=(9.0, -6.0, 1.2)),

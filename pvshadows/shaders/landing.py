@@ -225,6 +225,7 @@ class LandingCheck:
             actor.GetShaderProperty().GetMTime(),
             actor.GetBackfaceProperty(),
             actor.GetTexture(),
+            None if actor.GetTexture() is None else actor.GetTexture().GetMTime(),
             actor.GetForceOpaque(),
             actor.GetForceTranslucent(),
         )

@@ -128,6 +128,11 @@ def _shader_property(shader: vtk.vtkShaderProperty) -> Hashable:
     )
 
 
+def _keys(keys: vtk.vtkInformation | None) -> int:
+    """Return how many information keys a prop carries (render passes mark props with them)."""
+    return 0 if keys is None else keys.GetNumberOfKeys()
+
+
 def shader_variant(actor: vtk.vtkActor) -> Hashable:
     """Return a key equal for two actors only if VTK writes the same shaders for both.
 
@@ -142,7 +147,10 @@ def shader_variant(actor: vtk.vtkActor) -> Hashable:
     Hashable
         The mapper's class and colouring, clipping and depth-offset settings;
         the property's style, lighting, PBR features and textures (the
-        back face's too); the actor's texture and translucency; the shader
+        back face's too); the actor's texture, translucency (VTK's own
+        answer, which reads the colours' opacity too: a translucent actor
+        is drawn in the translucent pass, whose passes edit its shaders)
+        and information keys; the shader
         property's replacements, uniforms and own code; and which normals,
         texture coordinates, tangents, scalars and cell kinds the data holds.
 
@@ -168,6 +176,7 @@ def shader_variant(actor: vtk.vtkActor) -> Hashable:
         mapper.GetColorMode(),
         mapper.GetInterpolateScalarsBeforeMapping(),
         mapper.GetArrayAccessMode(),
+        mapper.GetArrayId(),
         mapper.GetArrayName(),
         mapper.GetNumberOfClippingPlanes(),
         _offsets(mapper),
@@ -175,7 +184,9 @@ def shader_variant(actor: vtk.vtkActor) -> Hashable:
         _property(actor.GetProperty()),
         _property(actor.GetBackfaceProperty()),
         actor.GetTexture() is not None,
+        bool(actor.HasTranslucentPolygonalGeometry()),
         actor.GetForceOpaque(),
         actor.GetForceTranslucent(),
+        _keys(actor.GetPropertyKeys()),
         _shader_property(actor.GetShaderProperty()),
     )
