@@ -290,7 +290,7 @@ class ReceiverEdits:
             if packed is None:
                 packed = receiver_uniforms(lights, uniforms)
             edits.apply(self._replacements_for(actor, signature, lights, packed))
-            if not edits.check.attach():
+            if not edits.check.attached:  # ``apply`` tried to attach it just now
                 bounds = state.bounds if isinstance(state, ActorState) else None
                 self.waiting.wait(key, edits.check, bounds)
             self.edited += 1

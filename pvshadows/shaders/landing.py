@@ -239,6 +239,11 @@ class LandingCheck:
             return None
         return (self._variant, tuple(self._edits))
 
+    @property
+    def attached(self) -> bool:
+        """Whether the check watches its mapper or follows a watcher (what :meth:`attach` said)."""
+        return self._watcher is not None or self._mapper is not None
+
     def attach(self) -> bool:
         """Watch the actor's OpenGL mapper, or follow the watcher of its kind; return whether done.
 
