@@ -217,6 +217,7 @@ class LandingCheck:
         if mapper is None:
             return None
         data = mapper.GetInputDataObject(0, 0)
+        texture = actor.GetTexture()
         stamp = (
             id(mapper),
             mapper.GetMTime(),
@@ -224,8 +225,8 @@ class LandingCheck:
             actor.GetProperty().GetMTime(),
             actor.GetShaderProperty().GetMTime(),
             actor.GetBackfaceProperty(),
-            actor.GetTexture(),
-            None if actor.GetTexture() is None else actor.GetTexture().GetMTime(),
+            texture,
+            None if texture is None else texture.GetMTime(),
             actor.GetForceOpaque(),
             actor.GetForceTranslucent(),
         )
@@ -434,9 +435,10 @@ class Watchers:
 
     def __init__(self) -> None:
         self._by_key: dict[Hashable, LandingCheck] = {}
-        #: For each watcher still unread: its followers' count of changes when their
-        #: boxes (its own first) were stacked, those boxes, and the planes last tried.
-        self._boxes: dict[LandingCheck, tuple[int, np.ndarray, np.ndarray | None]] = {}
+        #: The watchers not known to have read a program yet (a frame walks only these)
+        #: and, once stacked, their followers' count of changes then, the boxes (the
+        #: watcher's first) and the planes last tried.
+        self._unread: dict[LandingCheck, tuple[int, np.ndarray, np.ndarray | None] | None] = {}
         self.frame = 0
         self.handed_over = 0
 
@@ -450,13 +452,14 @@ class Watchers:
     def register(self, key: Hashable, check: LandingCheck) -> None:
         """Make ``check`` the watcher of ``key`` from this frame on."""
         self._by_key[key] = check
+        self._unread[check] = None
         check._watching_since = self.frame
 
     def drop(self, key: Hashable) -> None:
         """Forget the watcher of ``key``."""
         check = self._by_key.pop(key, None)
         if check is not None:
-            self._boxes.pop(check, None)
+            self._unread.pop(check, None)
 
     def hand_over_unseen(self, planes: np.ndarray | None) -> None:
         """Begin a frame: move each watch unread since an earlier frame to a follower in view.
@@ -475,18 +478,19 @@ class Watchers:
         self.frame += 1
         if planes is None:
             return
-        for check in list(self._by_key.values()):
-            if check.settled or check.failed or check._watching_since >= self.frame:
-                self._boxes.pop(check, None)
+        for check, kept in list(self._unread.items()):
+            if check.settled or check.failed:
+                del self._unread[check]
+                continue
+            if check._watching_since >= self.frame:
                 continue
             followers = check._followers
-            kept = self._boxes.get(check)
             if kept is None or kept[0] != check._followers_changed:
                 bounds = np.array([vtk.vtkActor.GetBounds(c.actor) for c in [check, *followers]])
                 kept = (check._followers_changed, bounds.reshape(-1, 3, 2).transpose(0, 2, 1), None)
             elif kept[2] is planes:
                 continue  # this view was tried
-            self._boxes[check] = (kept[0], kept[1], planes)
+            self._unread[check] = (kept[0], kept[1], planes)
             if not followers:
                 continue
             seen = boxes_seen(kept[1], planes)
