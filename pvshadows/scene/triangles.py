@@ -91,24 +91,32 @@ class ActorTriangles:
             three points; ``None`` when not flat.
         """
         if self._model_plane is None:
-            self._model_plane = (_plane_of(self.points, self.triangles),)
+            lo, hi = self.model_bounds()
+            size = float((hi - lo).max())
+            self._model_plane = (_plane_of(self.points, self.triangles, size),)
         return self._model_plane[0]
 
 
+#: How many evenly spaced points are tested first, so that a surface that
+#: is not flat is told in a few operations, not a pass over all its points.
+_PLANE_PROBES = 64
+
+
 def _plane_of(
-    points: np.ndarray, triangles: np.ndarray
+    points: np.ndarray, triangles: np.ndarray, size: float
 ) -> tuple[np.ndarray, np.ndarray, float] | None:
     if points.shape[0] < 3:
         return np.zeros(3), np.zeros(3), 0.0
     tri = triangles[0]
     normal = np.cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]])
-    size = float(np.ptp(points, axis=0).max())
     length = float(np.linalg.norm(normal))
     if not length > 0.0 or size == 0.0:
         return None
     normal /= length
-    if np.abs((points - points[tri[0]]) @ normal).max() > 1e-6 * size:
-        return None
+    step = max(1, points.shape[0] // _PLANE_PROBES)
+    for tested in (points[::step], points):
+        if np.abs((tested - points[tri[0]]) @ normal).max() > 1e-6 * size:
+            return None
     return points[tri[0]], normal, size
 
 
@@ -255,7 +263,7 @@ def read_triangles(actor: vtk.vtkActor, name: str = "actor") -> ActorTriangles |
     if triangles is None:
         surface = surface.triangulate(pass_lines=False, pass_verts=False)
         triangles = np.asarray(surface.regular_faces, dtype=np.int64).reshape(-1, 3)
-    points = np.asarray(surface.points, dtype=np.float64)
+    points = np.asarray(surface.points)
     if not np.isfinite(points).all():
         bad = int((~np.isfinite(points).all(axis=1)).sum())
         msg = (
@@ -268,14 +276,25 @@ def read_triangles(actor: vtk.vtkActor, name: str = "actor") -> ActorTriangles |
         return None
     marked = np.zeros(points.shape[0], dtype=bool)
     marked[triangles.ravel()] = True
-    if not marked.all():
+    if marked.all():
+        # VTK's bounds, kept with the data, are those of the same points
+        bounds = np.array(surface.GetBounds(), dtype=np.float64).reshape(3, 2).T
+    else:
         used = np.flatnonzero(marked)
         remap = np.full(points.shape[0], -1, dtype=np.int64)
         remap[used] = np.arange(used.size)
         points = points[used]
         triangles = remap[triangles]
-    center = 0.5 * (points.min(0) + points.max(0))
-    return ActorTriangles(center, points - center, triangles.astype(np.uint32), mtime)
+        bounds = np.stack([points.min(0), points.max(0)]).astype(np.float64)
+    center = 0.5 * (bounds[0] + bounds[1])
+    bounds.setflags(write=False)
+    return ActorTriangles(
+        center,
+        np.subtract(points, center, dtype=np.float64),
+        triangles.astype(np.uint32),
+        mtime,
+        _model_bounds=bounds,
+    )
 
 
 def world_bounds(triangles: ActorTriangles, matrix: np.ndarray) -> np.ndarray:
