@@ -14,6 +14,7 @@ from test_variants import VARIANTS
 from vtkmodules.util.misc import calldata_type
 
 import pvshadows.shaders.landing as landing
+import pvshadows.shaders.landing_views as landing_views
 import pvshadows.shaders.shading
 from conftest import draw, point_light
 from pvshadows import _vtk as vtk
@@ -225,9 +226,9 @@ def test_removing_the_watcher_leaves_its_followers_settled():
 def test_an_unread_watcher_costs_one_box_test_per_new_view(monkeypatch):
     """Nothing alike in view: the watch stays, its boxes are tested once per view, not per frame."""
     tested = []
-    seen = landing.boxes_seen
+    seen = landing_views.boxes_seen
     monkeypatch.setattr(
-        landing,
+        landing_views,
         "boxes_seen",
         lambda boxes, planes: tested.append(len(boxes)) or seen(boxes, planes),
     )

@@ -31,7 +31,7 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.gl.sampler_units import SamplerUnits
 from pvshadows.scene.snapshot import ActorState, Snapshot
-from pvshadows.shaders.landing import WaitingChecks, Watchers
+from pvshadows.shaders.landing_views import WaitingChecks, Watchers
 from pvshadows.shaders.shading import (
     LightShading,
     ShaderEdits,

@@ -30,7 +30,8 @@ from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import column_major
 from pvshadows.gl.programs import glsl_source
 from pvshadows.gl.sampler_units import BINDING_EXTENSION
-from pvshadows.shaders.landing import LandingCheck, Watchers
+from pvshadows.shaders.landing import LandingCheck
+from pvshadows.shaders.landing_views import Watchers
 from pvshadows.shaders.library import (
     MapLookup,
     extensions,
