@@ -18,11 +18,12 @@ from pvshadows.model.plan import AUTO_TECHNIQUE, SERVES, LightPlan
 from pvshadows.model.report import FrameReport
 from pvshadows.model.settings import ShadowSettings, preset, validated
 from pvshadows.pipeline.frame import RendererShadows
+from pvshadows.scene.actor_state import hides_what_is_behind
 from pvshadows.scene.light_kit import casts_by_default
 from pvshadows.scene.lights import light_kind, light_pose
 from pvshadows.scene.naming import ActorNames
 from pvshadows.scene.planes import require_plane
-from pvshadows.scene.snapshot import SceneReader, hides_what_is_behind
+from pvshadows.scene.reader import SceneReader
 from pvshadows.scene.triangles import vtk_id, world_points
 from pvshadows.verify.measure import Measurement, compare
 from pvshadows.verify.probe import read_visibility, require_drawn

@@ -667,7 +667,7 @@ def test_a_frame_says_the_cpu_time_of_pvshadows_own_code_the_passes_within_it():
 def test_a_read_that_fails_half_way_leaves_the_next_read_right(monkeypatch):
     """An error while reading the moved actors again (the first one read, the second
     not) is not the end of them: the next read gives both where they are now."""
-    from pvshadows.scene.snapshot import SceneReader
+    from pvshadows.scene.reader import SceneReader
 
     pl = pv.Plotter(off_screen=True)
     first, second = pl.add_mesh(pv.Cube()), pl.add_mesh(pv.Sphere(center=(3, 0, 0)))

@@ -8,7 +8,7 @@ from conftest import draw, point_light
 from pvshadows.geometry.transforms import look_rotation, perspective, translation
 from pvshadows.gl.binding import opengl_for
 from pvshadows.scene import planes
-from pvshadows.scene.snapshot import SceneReader
+from pvshadows.scene.reader import SceneReader
 from pvshadows.scene.triangles import read_triangles
 from pvshadows.techniques import planar
 from pvshadows.tools.scenes import standard_scene

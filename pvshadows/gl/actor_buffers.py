@@ -5,7 +5,8 @@ from __future__ import annotations
 from pvshadows import _vtk as vtk
 from pvshadows.gl.buffers import TriangleBuffers
 from pvshadows.gl.caster_batch import BatchKeeper, CasterBatch, worth_batching
-from pvshadows.scene.snapshot import CASTERS, ActorState, Snapshot
+from pvshadows.scene.actor_state import ActorState
+from pvshadows.scene.snapshot import CASTERS, Snapshot
 
 
 class ActorBuffers:

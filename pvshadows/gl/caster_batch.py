@@ -28,7 +28,8 @@ from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.buffers import IndexedBuffers
 from pvshadows.gl.raw_calls import raw_calls
-from pvshadows.scene.snapshot import CASTERS, ActorState, Snapshot
+from pvshadows.scene.actor_state import ActorState
+from pvshadows.scene.snapshot import CASTERS, Snapshot
 
 #: Casters of at most this many triangles go into the batch; a bigger one is
 #: drawn on its own, where its draw call is a small part of its cost.

@@ -14,9 +14,9 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.model.settings import ShadowSettings
+from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.planes import PlaneChoice
-from pvshadows.scene.snapshot import ActorState
 from pvshadows.scene.triangles import vtk_id
 
 #: Technique ``"auto"`` picks for each kind of light.

@@ -6,7 +6,8 @@ from dataclasses import replace
 from weakref import WeakKeyDictionary
 
 from pvshadows.model.settings import ShadowSettings
-from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.actor_state import ActorState
+from pvshadows.scene.snapshot import Snapshot
 
 #: Caster triangles from which ``passes="auto"`` fills a cube one face at a time. A
 #: geometry shader sending each triangle to its faces is one draw per caster, the least

@@ -30,7 +30,8 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.planner import PlanMemo, plan_frame
 from pvshadows.pipeline.reach import ReachCache
 from pvshadows.scene.impostors import LIGHT_SPACE_TECHNIQUES, lit_without_triangles
-from pvshadows.scene.snapshot import SceneReader, Snapshot
+from pvshadows.scene.reader import SceneReader
+from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.scene.view import FrameView
 from pvshadows.shaders.edits import ReceiverEdits

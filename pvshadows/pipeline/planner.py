@@ -37,6 +37,7 @@ from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.reach import ReachCache
 from pvshadows.pipeline.sight import ViewSight
 from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
+from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.culling import box_around, box_corners
 from pvshadows.scene.light_kit import unshadowed_reason
 from pvshadows.scene.lights import (
@@ -48,7 +49,7 @@ from pvshadows.scene.lights import (
     pose_time,
 )
 from pvshadows.scene.planes import PlaneChoice, choose_plane, sole_plane
-from pvshadows.scene.snapshot import RECEIVERS, ActorState, Snapshot
+from pvshadows.scene.snapshot import RECEIVERS, Snapshot
 from pvshadows.scene.view import FrameView
 
 #: A point light's casters within a cone of this half angle (degrees) get a map of that cone.

@@ -70,7 +70,7 @@ def light_cover(pose: LightPose, snapshot: Snapshot) -> LightPose:
     >>> import pyvista as pv
     >>> from pvshadows.pipeline.reach import light_cover
     >>> from pvshadows.scene.lights import LightKind, LightPose
-    >>> from pvshadows.scene.snapshot import SceneReader
+    >>> from pvshadows.scene.reader import SceneReader
     >>> pl = pv.Plotter(off_screen=True)
     >>> _ = pl.add_mesh(pv.Cube(x_length=10, y_length=10, z_length=10))
     >>> snapshot = SceneReader(lambda actor: "a cube").read(pl.renderer)
@@ -134,7 +134,7 @@ class ReachCache:
     >>> import pyvista as pv
     >>> from pvshadows.scene.lights import LightKind, LightPose
     >>> from pvshadows.pipeline.reach import ReachCache
-    >>> from pvshadows.scene.snapshot import SceneReader
+    >>> from pvshadows.scene.reader import SceneReader
     >>> pl = pv.Plotter(off_screen=True)
     >>> _ = pl.add_mesh(pv.Cube(center=(0, 0, -3)))
     >>> _ = pl.add_mesh(pv.Cube(center=(9, 0, -3)))

@@ -21,7 +21,8 @@ from pvshadows import _vtk as vtk
 from pvshadows.model.plan import FALLBACK_TECHNIQUES, SERVES, Cast, VolumePlan
 from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.volume_zmode import choose_zmode
-from pvshadows.scene.snapshot import ActorState, Snapshot, hides_what_is_behind
+from pvshadows.scene.actor_state import ActorState, hides_what_is_behind
+from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.volume_light import (

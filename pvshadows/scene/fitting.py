@@ -23,9 +23,10 @@ from pvshadows.geometry.transforms import (
     squared_lengths,
     translation,
 )
+from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.culling import CORNER_SIDES, box_corners_along, box_offsets, widened_boxes
 from pvshadows.scene.lights import LightPose
-from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.snapshot import Snapshot
 
 #: Sizes of the sun's map are rounded up to steps of 2 ** (1 / SIZE_STEPS_PER_OCTAVE).
 SIZE_STEPS_PER_OCTAVE = 8

@@ -89,7 +89,7 @@ class CasterMeasureCache(Generic[MeasuresT]):
     >>> from pvshadows.scene.fitting import cone_measures
     >>> from pvshadows.scene.lights import LightKind, LightPose
     >>> from pvshadows.scene.measures import CasterMeasureCache
-    >>> from pvshadows.scene.snapshot import SceneReader
+    >>> from pvshadows.scene.reader import SceneReader
     >>> pl = pv.Plotter(off_screen=True)
     >>> boxes = [pl.add_mesh(pv.Cube(center=(x, 0, -5))) for x in (-1, 1)]
     >>> reader = SceneReader(lambda actor: "a cube")

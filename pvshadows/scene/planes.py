@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.triangles import ActorTriangles
 
 #: Largest distance of a plane's points from their best-fitting plane, as a
@@ -332,7 +332,7 @@ def sole_plane(receivers: Sequence[ActorState]) -> tuple[ActorState, np.ndarray]
     --------
     >>> import pyvista as pv
     >>> from pvshadows.scene.planes import sole_plane
-    >>> from pvshadows.scene.snapshot import SceneReader
+    >>> from pvshadows.scene.reader import SceneReader
     >>> pl = pv.Plotter(off_screen=True)
     >>> ground = pl.add_mesh(pv.Plane(center=(0, 0, -1)))
     >>> reader = SceneReader(lambda actor: "an actor")

@@ -14,7 +14,7 @@ transform, its mapper (its input and settings), the mapper's input, and,
 where the input has them, its points, their array and its polygons and
 strips (raw VTK code may modify these without modifying the dataset; PyVista
 modifies the dataset too). A suspect's modification times are then read
-(:class:`pvshadows.scene.snapshot.SceneReader`) to tell whether it changed.
+(:class:`pvshadows.scene.reader.SceneReader`) to tell whether it changed.
 """
 
 from __future__ import annotations

@@ -30,7 +30,8 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.sampler_units import SamplerUnits
-from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.actor_state import ActorState
+from pvshadows.scene.snapshot import Snapshot
 from pvshadows.shaders.landing_views import WaitingChecks, Watchers
 from pvshadows.shaders.shading import (
     LightShading,
@@ -84,7 +85,7 @@ class ReceiverEdits:
     >>> import pyvista as pv
     >>> from pvshadows.shaders.edits import ReceiverEdits
     >>> from pvshadows.shaders.shading import LightShading
-    >>> from pvshadows.scene.snapshot import SceneReader
+    >>> from pvshadows.scene.reader import SceneReader
     >>> pl = pv.Plotter(off_screen=True)
     >>> _ = pl.add_mesh(pv.Sphere())
     >>> snapshot = SceneReader(lambda actor: "an actor").read(pl.renderer)

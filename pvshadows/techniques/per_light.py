@@ -16,7 +16,8 @@ from pvshadows.gl.caster_draws import CasterDraws
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import Cast
 from pvshadows.model.settings import ShadowSettings
-from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.actor_state import ActorState
+from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, Releasable
@@ -80,7 +81,7 @@ def caster_draws(
         The casters' triangles on the GPU.
     settings : ShadowSettings
         The light's settings: with ``cull_front=True`` each caster's
-        :attr:`~pvshadows.scene.snapshot.ActorState.cull_side` is culled.
+        :attr:`~pvshadows.scene.actor_state.ActorState.cull_side` is culled.
 
     Returns
     -------

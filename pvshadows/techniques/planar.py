@@ -39,8 +39,8 @@ from pvshadows.gl.mask_target import MaskTexture
 from pvshadows.model.plan import Cast, PlanarCast
 from pvshadows.model.report import PassReport
 from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
+from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.planes import PlaneChoice, facing, flattening
-from pvshadows.scene.snapshot import ActorState
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext

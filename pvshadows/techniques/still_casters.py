@@ -25,7 +25,7 @@ from typing import Generic, TypeVar
 import numpy as np
 
 from pvshadows.model.report import PassReport
-from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.actor_state import ActorState
 from pvshadows.techniques.base import Releasable
 
 #: The largest share of a light's casters drawn over the still map; more and
@@ -152,10 +152,10 @@ class StillCasters(Generic[MapT]):
         casters : list of ActorState
             The casters this redraw draws.
         keys : tuple
-            Their :meth:`~pvshadows.scene.snapshot.ActorState.key`, in order
+            Their :meth:`~pvshadows.scene.actor_state.ActorState.key`, in order
             (the actor's id first).
         serials : numpy.ndarray
-            ``(n,)`` their :attr:`~pvshadows.scene.snapshot.ActorState.serial`:
+            ``(n,)`` their :attr:`~pvshadows.scene.actor_state.ActorState.serial`:
             the rows where it differs from the last redraw's are the only
             ones whose keys are compared.
         target : texture

@@ -18,7 +18,8 @@ from pvshadows import _vtk as vtk
 from pvshadows.gl.transmittance_textures import TransmittanceCube, TransmittanceTexture
 from pvshadows.model.report import PassReport
 from pvshadows.passes.transmittance import PASS_NAME, TransmittancePass
-from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.actor_state import ActorState
+from pvshadows.scene.snapshot import Snapshot
 
 _TRANSMITTANCE = attrgetter("transmittance")
 
@@ -74,7 +75,7 @@ def translucent_key(casters: list[ActorState]) -> tuple:
     Returns
     -------
     tuple
-        Each caster's :meth:`~pvshadows.scene.snapshot.ActorState.key` and transmittance.
+        Each caster's :meth:`~pvshadows.scene.actor_state.ActorState.key` and transmittance.
     """
     return tuple((*c.key(), c.transmittance) for c in casters)
 

@@ -50,8 +50,8 @@ from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
 from pvshadows.model.plan import Cast, VolumeCast
 from pvshadows.model.report import PassReport
 from pvshadows.passes.volume_stencil import DepthDraw, VolumeDraw, VolumePasses
+from pvshadows.scene.actor_state import ActorState, hides_what_is_behind
 from pvshadows.scene.render_target import tiled_viewport
-from pvshadows.scene.snapshot import ActorState, hides_what_is_behind
 from pvshadows.scene.triangles import ActorTriangles, vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext

@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 
 from pvshadows.geometry.volume_casters import VolumeMesh, winding_number
-from pvshadows.scene.snapshot import ActorState, Snapshot
+from pvshadows.scene.actor_state import ActorState
+from pvshadows.scene.snapshot import Snapshot
 from pvshadows.techniques.base import FrameContext
 
 #: A light this close to a caster's face plane (fraction of the caster's size) lies in it.

@@ -16,7 +16,7 @@ import numpy as np
 from pvshadows.geometry.closed import OpenMeshError
 from pvshadows.geometry.volume_casters import VolumeMesh, batches, prepare_volume_mesh
 from pvshadows.model.plan import Cast
-from pvshadows.scene.snapshot import ActorState
+from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.triangles import ActorTriangles
 
 #: How a caster that is not plainly closed is counted, in words.
