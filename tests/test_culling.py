@@ -159,7 +159,7 @@ def test_boxes_tested_in_plain_floats_get_the_answers_numpy_gives(seed):
 def test_one_box_measured_alone_from_a_spot_gets_the_bits_it_gets_among_many(seed):
     """A moved caster is measured alone in plain floats: the same distances and spread,
     to the last bit, as numpy's among many, at every scale, beside and behind the light."""
-    from pvshadows.scene.fitting import cone_measures
+    from pvshadows.scene.spot_fitting import cone_measures
 
     rng = np.random.default_rng(seed)
     unbounded = 0
@@ -222,7 +222,7 @@ def _faces_by_plane(box: np.ndarray) -> int:
 @pytest.mark.parametrize("scale", [1e-6, 1.0, 1e9])
 def test_cube_faces_touching_boxes_match_a_test_plane_by_plane(scale):
     from pvshadows.geometry.transforms import boxes_from_origin, faces_touching_boxes
-    from pvshadows.scene.fitting import box_distances_squared
+    from pvshadows.scene.spot_fitting import box_distances_squared
 
     rng = np.random.default_rng(7)
     boxes = rng.normal(size=(400, 2, 3)) * scale
@@ -246,7 +246,7 @@ def test_measures_of_widened_boxes_hold_for_a_light_moved_within_the_margin(ligh
     """A moving light is served the measures of boxes widened round where it was: nearer
     than every box, farther than its corners, spread as wide about the kept axis, and on
     every cube face it touches from anywhere within the margin."""
-    from pvshadows.scene.fitting import _rotation_along, cone_measures
+    from pvshadows.scene.spot_fitting import _rotation_along, cone_measures
     from pvshadows.techniques.cubemap import cube_measures
 
     measure = cone_measures if light == "spot" else cube_measures

@@ -11,8 +11,8 @@ import pytest
 import pyvista as pv
 from pyvista import examples
 
-from pvshadows.scene.fitting import SpotFit, cone_measures, spot_fit
 from pvshadows.scene.lights import LightKind, LightPose
+from pvshadows.scene.spot_fitting import SpotFit, cone_measures, spot_fit
 from pvshadows.tools.scenes import standard_scene
 
 #: Camera 0.25 above the standard scene's ground, inside the box's shadow,

@@ -567,8 +567,8 @@ def test_a_caster_is_tested_for_closure_only_when_a_light_culls_front_faces(monk
 
 
 def test_a_spots_measures_patched_over_moved_actors_match_measures_taken_afresh():
-    from pvshadows.scene.fitting import cone_measures
     from pvshadows.scene.measures import CasterMeasureCache
+    from pvshadows.scene.spot_fitting import cone_measures
 
     pl, _ = crowd()
     shadows = pl.shadows._renderers[0]
@@ -732,8 +732,8 @@ def test_a_light_moving_and_turning_a_little_keeps_its_shadows_right(light, scal
 
 
 def test_a_suns_widened_boxes_hold_every_box_turned_within_its_slack():
-    from pvshadows.scene.fitting import SUN_TURN_DEGREES, sun_actors, sun_rotation
     from pvshadows.scene.lights import LightKind, LightPose
+    from pvshadows.scene.sun_fitting import SUN_TURN_DEGREES, sun_actors, sun_rotation
 
     pl, _ = crowd()
     snapshot = pl.shadows._renderers[0].snapshot

@@ -67,7 +67,7 @@ class CasterMeasureCache(Generic[MeasuresT]):
     measure : callable
         ``measure(pose, boxes)`` returns a named tuple of ``(n,)`` arrays, one
         row per ``(n, 2, 3)`` box (for example
-        :func:`pvshadows.scene.fitting.cone_measures`). Each measure must
+        :func:`pvshadows.scene.spot_fitting.cone_measures`). Each measure must
         bound from below (a distance to a box) or above (a distance to its
         farthest corner, a spread, the cube faces it touches) what it gives
         for any smaller box, so that measures of widened boxes hold for a
@@ -86,7 +86,7 @@ class CasterMeasureCache(Generic[MeasuresT]):
     --------
     >>> import numpy as np
     >>> import pyvista as pv
-    >>> from pvshadows.scene.fitting import cone_measures
+    >>> from pvshadows.scene.spot_fitting import cone_measures
     >>> from pvshadows.scene.lights import LightKind, LightPose
     >>> from pvshadows.scene.measures import CasterMeasureCache
     >>> from pvshadows.scene.reader import SceneReader

@@ -90,7 +90,7 @@ def distance_range(near: np.ndarray, far: np.ndarray) -> tuple[float, float]:
         ``(n,)`` squared distances from the light to each caster's bounds and
         to their farthest corner
         (:func:`pvshadows.geometry.transforms.boxes_from_origin`,
-        :func:`pvshadows.scene.fitting.box_distances_squared`).
+        :func:`pvshadows.scene.spot_fitting.box_distances_squared`).
 
     Returns
     -------

@@ -25,21 +25,23 @@ from pvshadows.model.report import PassReport
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.passes.map_depth import MapDepthPass
 from pvshadows.passes.transmittance import TranslucentCaster
-from pvshadows.scene.fitting import (
-    SUN_TURN_DEGREES,
+from pvshadows.scene.lights import LightKind, LightPose
+from pvshadows.scene.measures import CasterMeasureCache
+from pvshadows.scene.spot_fitting import (
     ConeMeasures,
-    SunFit,
     cone_measures,
     spot_fit,
     spot_fit_holds,
     spot_shadowing_rows,
+)
+from pvshadows.scene.sun_fitting import (
+    SUN_TURN_DEGREES,
+    SunFit,
     sun_actors,
     sun_fit,
     sun_fit_over_both,
     sun_rotation,
 )
-from pvshadows.scene.lights import LightKind, LightPose
-from pvshadows.scene.measures import CasterMeasureCache
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
