@@ -376,6 +376,31 @@ def to_vtk_matrix(matrix: np.ndarray) -> vtk.vtkMatrix4x4:
     return result
 
 
+def from_vtk_matrix(matrix: vtk.vtkMatrix4x4) -> np.ndarray:
+    """Return the values of a ``vtkMatrix4x4`` as a numpy array.
+
+    Parameters
+    ----------
+    matrix : vtk.vtkMatrix4x4
+        The VTK matrix.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(4, 4)`` float64, row-major as VTK stores it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.geometry.transforms import from_vtk_matrix, to_vtk_matrix
+    >>> from_vtk_matrix(to_vtk_matrix(np.diag([1.0, 2.0, 3.0, 1.0]))).diagonal().tolist()
+    [1.0, 2.0, 3.0, 1.0]
+    """
+    # ``GetData`` hands the sixteen values over as one tuple; a numpy array given to
+    # ``DeepCopy`` instead is read, and written back, one element at a time.
+    return np.array(matrix.GetData()).reshape(4, 4)
+
+
 def column_major(matrices: np.ndarray) -> np.ndarray:
     """Return float32 values of one or more 4x4 matrices in OpenGL (column) order.
 

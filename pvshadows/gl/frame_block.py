@@ -31,6 +31,8 @@ from pvshadows.gl.binding import opengl_for
 _EYE = np.eye(4)
 #: The uniform buffer binding point of the block: every program's default.
 BINDING = 0
+#: ``GL_UNIFORM_BUFFER`` and ``GL_DYNAMIC_DRAW``, as plain ints.
+_UNIFORM_BUFFER, _DYNAMIC_DRAW = 0x8A11, 0x88E8
 
 
 class LightEntry(NamedTuple):
@@ -86,11 +88,11 @@ class FrameBlock:
         gl = opengl_for(window)
         # The raw entry points skip PyOpenGL's argument wrappers; imported here, once
         # PyOpenGL is loaded for the window's platform.
-        from OpenGL.raw.GL.VERSION.GL_1_5 import glBindBuffer, glBufferData
+        from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData
         from OpenGL.raw.GL.VERSION.GL_3_0 import glBindBufferBase
 
         self._gl = gl
-        self._bind, self._send, self._bind_base = glBindBuffer, glBufferData, glBindBufferBase
+        self._send, self._bind_base = glBufferData, glBindBufferBase
         self._buffer = int(gl.glGenBuffers(1))
         self._data = np.zeros(0, dtype=np.float32)
         self._probe = self._data.view(np.int32)
@@ -156,15 +158,14 @@ class FrameBlock:
             row[32:48].reshape(4, 4)[:] = light_to_clip.T
             row[48:52] = entry.light_vc
             row[52] = entry.strength
-        gl = self._gl
+        # Binding to the indexed point binds the buffer to GL_UNIFORM_BUFFER too, where
+        # glBufferData reads it.
+        self._bind_base(_UNIFORM_BUFFER, BINDING, self._buffer)
         sent = data.tobytes()  # compared as bytes: a NaN parameter equals itself
         if sent != self._sent:
-            self._bind(gl.GL_UNIFORM_BUFFER, self._buffer)
-            self._send(gl.GL_UNIFORM_BUFFER, data.nbytes, self._pointer, gl.GL_DYNAMIC_DRAW)
-            self._bind(gl.GL_UNIFORM_BUFFER, 0)
+            self._send(_UNIFORM_BUFFER, data.nbytes, self._pointer, _DYNAMIC_DRAW)
             self._sent = sent
             self.uploads += 1
-        self._bind_base(gl.GL_UNIFORM_BUFFER, BINDING, self._buffer)
 
     def release(self) -> None:
         """Delete the buffer."""

@@ -77,6 +77,7 @@ class RendererShadows:
         #: Each light's last plan, kept while its inputs hold (``memo.planned`` counts replans).
         self.memo = PlanMemo()
         self._window: vtk.vtkOpenGLRenderWindow | None = None
+        self._window_parts: tuple = ()
         self._timer: PassTimer | None = None
         self._buffers: ActorBuffers | None = None
         self._block: FrameBlock | None = None
@@ -118,6 +119,14 @@ class RendererShadows:
         if self._window is window:
             return
         self._window = window
+        # Held only so that their Python wrappers live on: the passes ask the window for
+        # them many times a frame, and VTK makes a wrapper afresh (looking its class up
+        # by name) for an object that Python no longer holds.
+        self._window_parts = (
+            window.GetState(),
+            window.GetTextureUnitManager(),
+            window.GetShaderCache(),
+        )
         self._timer = PassTimer(window)
         self._buffers = ActorBuffers(window)
         self._block = FrameBlock(window)
@@ -371,6 +380,7 @@ class RendererShadows:
             forget_pointer_records()
         self._techniques.clear()
         self._window = None
+        self._window_parts = ()
 
 
 def _raised_in(error: Exception) -> str:

@@ -16,6 +16,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.closed import is_closed_outward
+from pvshadows.geometry.transforms import from_vtk_matrix
 
 
 @dataclass
@@ -174,10 +175,7 @@ def actor_matrix(actor: vtk.vtkProp3D) -> np.ndarray:
     >>> actor_matrix(actor)[:3, 3].tolist()
     [1.0, 2.0, 3.0]
     """
-    elements = np.empty(16)
-    matrix = actor.GetMatrix()
-    matrix.DeepCopy(elements, matrix)  # one call, not sixteen
-    return elements.reshape(4, 4)
+    return from_vtk_matrix(actor.GetMatrix())
 
 
 def _surface_of(data: vtk.vtkDataObject) -> pv.PolyData | None:

@@ -7,26 +7,23 @@ so build one per render target from that target's renderer and camera.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.transforms import from_vtk_matrix
 from pvshadows.scene.culling import clip_planes
 
-
-def _array(matrix: vtk.vtkMatrix4x4) -> np.ndarray:
-    elements = np.empty(16)
-    matrix.DeepCopy(elements, matrix)  # one call instead of sixteen GetElement
-    return elements.reshape(4, 4)
+#: A matrix VTK inverts into, then read: VTK's routine is cheaper to call than numpy's.
+_INVERSE = vtk.vtkMatrix4x4()
 
 
-def _inverse(matrix: np.ndarray) -> np.ndarray:
-    """Invert a ``(4, 4)`` matrix with VTK's routine (cheaper to call than numpy's)."""
-    inverse = np.empty(16)
-    vtk.vtkMatrix4x4.Invert(matrix.ravel(), inverse)
-    return inverse.reshape(4, 4)
+def _inverse(matrix: vtk.vtkMatrix4x4) -> np.ndarray:
+    """Return the inverse of a VTK matrix."""
+    vtk.vtkMatrix4x4.Invert(matrix, _INVERSE)
+    return from_vtk_matrix(_INVERSE)
 
 
 @dataclass(frozen=True)
@@ -39,10 +36,8 @@ class FrameView:
         VTK's view matrix (``vertexVC`` in shaders), float64 ``(4, 4)``.
     view_to_world : numpy.ndarray
         Its inverse.
-    projection : numpy.ndarray
-        View to clip coordinates (depth in [-1, 1]).
     world_to_clip : numpy.ndarray
-        ``projection @ world_to_view``.
+        The camera's projection (depth in [-1, 1]) times :attr:`world_to_view`.
     aspect : float
         The renderer's tiled aspect ratio.
     viewport : tuple of int
@@ -56,12 +51,15 @@ class FrameView:
 
     world_to_view: np.ndarray
     view_to_world: np.ndarray
-    projection: np.ndarray
     world_to_clip: np.ndarray
     aspect: float
     viewport: tuple[int, int]
     planes: np.ndarray
     stamp: tuple = ()
+    #: The camera's VTK matrices this view was read from. Held only so that their
+    #: Python wrappers live on: VTK makes a wrapper afresh, looking its class up by
+    #: name, for an object that Python no longer holds.
+    _matrices: tuple = field(default=(), repr=False, compare=False)
 
     @classmethod
     def of(cls, renderer: vtk.vtkRenderer, last: FrameView | None = None) -> FrameView:
@@ -97,24 +95,27 @@ class FrameView:
         stamp = (camera, vtk.vtkCamera.GetMTime(camera), aspect, width, height)
         if last is not None and last.stamp == stamp:
             return last
-        world_to_view = _array(vtk.vtkCamera.GetModelViewTransformMatrix(camera))
-        projection = _array(vtk.vtkCamera.GetProjectionTransformMatrix(camera, aspect, -1, 1))
-        world_to_clip = projection @ world_to_view
+        to_view = vtk.vtkCamera.GetModelViewTransformMatrix(camera)
+        # VTK multiplies projection and view itself: one call, no product in Python
+        to_clip = vtk.vtkCamera.GetCompositeProjectionTransformMatrix(camera, aspect, -1, 1)
+        world_to_clip = from_vtk_matrix(to_clip)
         return cls(
-            world_to_view,
-            _inverse(world_to_view),
-            projection,
+            from_vtk_matrix(to_view),
+            _inverse(to_view),
             world_to_clip,
             aspect,
             (int(width), int(height)),
             clip_planes(world_to_clip),
             stamp,
+            (to_view, to_clip),
         )
 
     @cached_property
     def clip_to_world(self) -> np.ndarray:
         """The inverse of :attr:`world_to_clip` (computed when first asked)."""
-        return _inverse(self.world_to_clip)
+        inverse = np.empty(16)
+        vtk.vtkMatrix4x4.Invert(self.world_to_clip.ravel(), inverse)
+        return inverse.reshape(4, 4)
 
     def to_frame_at(self, origin: np.ndarray) -> np.ndarray:
         """Return the matrix from view coordinates to world axes moved to ``origin``.
