@@ -14,6 +14,8 @@ import numpy.typing as npt
 
 from pvshadows import _vtk as vtk
 
+_IDENTITY = np.eye(4)
+
 #: Forward and up axes of the six cube faces in GL order (+X, -X, +Y, -Y, +Z, -Z),
 #: chosen so that a face rendered with :func:`cube_face_rotation` lands where a
 #: ``samplerCube`` lookup with the light-to-point vector reads it.
@@ -91,13 +93,16 @@ def perspective(fov_y_degrees: float, aspect: float, near: float, far: float) ->
     >>> round(float(m[0, 0]), 9), float(m[3, 2])
     (1.0, -1.0)
     """
-    f = 1.0 / np.tan(np.radians(fov_y_degrees) / 2.0)
-    m = np.zeros((4, 4))
-    m[0, 0], m[1, 1] = f / aspect, f
-    m[2, 2] = (far + near) / (near - far)
-    m[2, 3] = 2.0 * far * near / (near - far)
-    m[3, 2] = -1.0
-    return m
+    # Python floats and one array: numpy's calls on single numbers cost more than the sums.
+    f = 1.0 / math.tan(math.radians(fov_y_degrees) / 2.0)
+    return np.array(
+        [
+            [f / aspect, 0.0, 0.0, 0.0],
+            [0.0, f, 0.0, 0.0],
+            [0.0, 0.0, (far + near) / (near - far), 2.0 * far * near / (near - far)],
+            [0.0, 0.0, -1.0, 0.0],
+        ]
+    )
 
 
 def cube_face_rotation(face: int) -> np.ndarray:
@@ -344,7 +349,7 @@ def translation(offset: np.ndarray) -> np.ndarray:
     >>> translation([1, 2, 3])[:3, 3].tolist()
     [1.0, 2.0, 3.0]
     """
-    m = np.eye(4)
+    m = _IDENTITY.copy()
     m[:3, 3] = offset
     return m
 

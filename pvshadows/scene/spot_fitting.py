@@ -106,7 +106,7 @@ def spot_fit(
     cone = math.tan(math.radians(min(pose.cone_angle + turned, 89.0)))
     half = cone if spread is None else min(cone, spread)
     half *= 1.0 + 2.0 * MARGIN_TEXELS / resolution
-    fov = 2.0 * np.degrees(np.arctan(half))
+    fov = 2.0 * math.degrees(math.atan(half))
     projection = perspective(fov, 1.0, near, far) @ rotation
     return SpotFit(rotation, projection, float(2.0 * half / resolution))
 
