@@ -212,8 +212,19 @@ class SunActors:
         return math.acos(max(-1.0, min(1.0, 0.5 * (trace - 1.0)))) <= self.slack
 
     def offset(self, rotation: np.ndarray) -> list[float]:
-        """Return the pivot in the light axes of ``rotation``: what the boxes are measured from."""
-        return (rotation[:3, :3] @ self.pivot).tolist()
+        """Return the pivot in the light axes of ``rotation``: what the boxes are measured from.
+
+        Worked out again only for another rotation than last asked: a light
+        that stays keeps its rotation, however the camera moves.
+        """
+        kept = self._offset
+        if kept[0] is not rotation:
+            kept[:] = rotation, (rotation[:3, :3] @ self.pivot).tolist()
+        return kept[1]
+
+    @cached_property
+    def _offset(self) -> list:
+        return [None, None]
 
     def casters_in(self, fit: SunFit, snapshot: Snapshot) -> list[ActorState]:
         """Return the casters whose bounds overlap a map's coverage across the light.
