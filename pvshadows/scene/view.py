@@ -8,6 +8,7 @@ so build one per render target from that target's renderer and camera.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -41,8 +42,6 @@ class FrameView:
         The renderer's tiled aspect ratio.
     viewport : tuple of int
         Width and height of the renderer in pixels.
-    clip_to_world : numpy.ndarray
-        The inverse of :attr:`world_to_clip`.
     planes : numpy.ndarray
         ``(6, 4)`` world frustum planes (see :func:`pvshadows.scene.culling.frustum_planes`).
     stamp : tuple
@@ -53,7 +52,6 @@ class FrameView:
     world_to_view: np.ndarray
     view_to_world: np.ndarray
     world_to_clip: np.ndarray
-    clip_to_world: np.ndarray
     aspect: float
     viewport: tuple[int, int]
     planes: np.ndarray
@@ -105,13 +103,19 @@ class FrameView:
             from_vtk_matrix(to_view),
             _inverse(to_view),
             world_to_clip,
-            _inverse(to_clip),
             aspect,
             (int(width), int(height)),
             clip_planes(world_to_clip),
             stamp,
             (to_view, to_clip),
         )
+
+    @cached_property
+    def clip_to_world(self) -> np.ndarray:
+        """The inverse of :attr:`world_to_clip` (computed when first asked)."""
+        inverse = np.empty(16)
+        vtk.vtkMatrix4x4.Invert(self.world_to_clip.ravel(), inverse)
+        return inverse.reshape(4, 4)
 
     def to_frame_at(self, origin: np.ndarray) -> np.ndarray:
         """Return the matrix from view coordinates to world axes moved to ``origin``.
