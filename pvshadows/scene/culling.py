@@ -8,7 +8,7 @@ from functools import lru_cache
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.geometry.transforms import look_rotation, squared_lengths
+from pvshadows.geometry.transforms import from_vtk_matrix, look_rotation, squared_lengths
 from pvshadows.scene.lights import LightPose
 
 
@@ -36,7 +36,7 @@ def frustum_planes(camera: vtk.vtkCamera, aspect: float) -> np.ndarray:
     (6, 4)
     """
     matrix = camera.GetCompositeProjectionTransformMatrix(aspect, -1, 1)
-    return clip_planes(np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)]))
+    return clip_planes(from_vtk_matrix(matrix))
 
 
 #: Picks each frustum plane out of a clip matrix's rows: the last plus or minus one other.

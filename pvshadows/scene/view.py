@@ -111,6 +111,12 @@ class FrameView:
         )
 
     @cached_property
+    def projection(self) -> np.ndarray:
+        """View to clip coordinates, depth in [-1, 1] (read from the camera when first asked)."""
+        camera, _, aspect = self.stamp[:3]
+        return from_vtk_matrix(vtk.vtkCamera.GetProjectionTransformMatrix(camera, aspect, -1, 1))
+
+    @cached_property
     def clip_to_world(self) -> np.ndarray:
         """The inverse of :attr:`world_to_clip` (computed when first asked)."""
         inverse = np.empty(16)

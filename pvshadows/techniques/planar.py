@@ -91,10 +91,6 @@ def _camera_sees_unlit_side(camera: vtk.vtkCamera, plane: np.ndarray) -> bool:
     return float(plane @ np.append(camera.GetPosition(), 1.0)) < 0.0
 
 
-def _matrix(vtk_matrix: vtk.vtkMatrix4x4) -> np.ndarray:
-    return np.array([[vtk_matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
-
-
 def caster_matrices(
     model: np.ndarray,
     plane: np.ndarray,
@@ -175,9 +171,7 @@ def flat_draws(
     list of FlatDraw
         One per caster.
     """
-    camera, renderer = context.camera, context.renderer
-    projection = _matrix(camera.GetProjectionTransformMatrix(renderer.GetTiledAspectRatio(), -1, 1))
-    view = _matrix(camera.GetViewTransformMatrix())
+    projection, view = context.view.projection, context.view.world_to_view
     return [
         FlatDraw(
             context.buffers.get(caster),
@@ -285,15 +279,11 @@ class PlanarTechnique:
             return [
                 PassReport(_PASS, "skipped", f"no caster between the light and {name}: all lit")
             ]
-        camera = context.camera
         key = (
             choice.actor.key(),
             plane.tobytes(),
             plan.pose.key(),
-            _matrix(camera.GetViewTransformMatrix()).tobytes(),
-            _matrix(
-                camera.GetProjectionTransformMatrix(context.renderer.GetTiledAspectRatio(), -1, 1)
-            ).tobytes(),
+            context.view.world_to_clip.tobytes(),
             state.mask.size,
             tuple((*c.key(), c.transmittance) for c in casters),
         )
