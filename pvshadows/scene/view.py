@@ -119,9 +119,8 @@ class FrameView:
     @cached_property
     def clip_to_world(self) -> np.ndarray:
         """The inverse of :attr:`world_to_clip` (computed when first asked)."""
-        inverse = np.empty(16)
-        vtk.vtkMatrix4x4.Invert(self.world_to_clip.ravel(), inverse)
-        return inverse.reshape(4, 4)
+        camera, _, aspect = self.stamp[:3]
+        return _inverse(vtk.vtkCamera.GetCompositeProjectionTransformMatrix(camera, aspect, -1, 1))
 
     def to_frame_at(self, origin: np.ndarray) -> np.ndarray:
         """Return the matrix from view coordinates to world axes moved to ``origin``.
