@@ -186,3 +186,34 @@ def test_an_interrupted_bench_keeps_what_it_measured(tmp_path):
     assert [r["setting"] for r in rows] == ["resolution=128 filter=hard"]
     assert 0.0 <= float(rows[0]["misclassified"]) < 0.05
     assert "| cubemap | point | resolution=128 filter=hard |" in (tmp_path / "bench.md").read_text()
+
+
+def test_the_cold_cache_control_is_tabled_apart_from_the_actors_series(tmp_path):
+    from pvshadows.tools.overhead import (
+        MOTIONS,
+        OverheadRow,
+        OverheadScene,
+        overhead_scenes,
+        write_overhead,
+    )
+
+    cold = [scene for scene in overhead_scenes() if scene.cold_after]
+    assert [scene.label for scene in cold] == ["1 caster after a 1000-caster frame, spot"]
+
+    def row(scene, added):
+        timed = dict.fromkeys(MOTIONS, added)
+        return OverheadRow(scene, plain_ms=timed, added_ms=timed, frames=9, first_plain_s=0.5)
+
+    rows = [
+        row(OverheadScene("actors", actors=1), 0.2),
+        row(cold[0], 0.6),
+        row(OverheadScene("actors", actors=100), 0.2),
+    ]
+    text = write_overhead(rows, tmp_path)
+    line = next(x for x in text.splitlines() if x.startswith("| 1 caster after"))
+    assert "| not timed |" in line  # its first frame is not measured: NaN is not printed
+    # The control is no size of the actors series: the fit over 1 and 100 casters is flat.
+    assert "| actors | camera | 0.2 ms * actors^0.00 |" in text
+    with open(tmp_path / "overhead.csv", encoding="utf-8") as handle:
+        records = {r["scene"]: r for r in csv.DictReader(handle)}
+    assert records["1 caster after a 1000-caster frame, spot"]["cold_after"] == "1000"

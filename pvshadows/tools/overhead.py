@@ -63,6 +63,13 @@ class OverheadScene:
     triangles : int
         Triangles of the one big caster of the ``"triangles"`` series
         (0 elsewhere).
+    cold_after : int
+        Casters of a plain scene (no shadows) drawn, untimed, before each
+        timed frame of both twins, or 0. Drawing that many actors evicts
+        from the CPU's caches what the next frame reads, as a big scene's
+        own frame does: the ``"cold"`` series (one caster after a
+        1000-caster frame) tells how much of the growth along the
+        ``"actors"`` series is colder caches rather than more work.
     """
 
     series: str
@@ -70,16 +77,20 @@ class OverheadScene:
     actors: int = 4
     lights: int = 1
     triangles: int = 0
+    cold_after: int = 0
 
     @property
     def label(self) -> str:
         """Name of the scene in the table."""
         if self.series == "standard":
             return f"standard scene, {self.light}"
+        casters = f"{self.actors} caster{'s' * (self.actors != 1)}"
         if self.series == "actors":
-            return f"{self.actors} casters, {self.light}"
+            return f"{casters}, {self.light}"
         if self.series == "lights":
             return f"{self.lights} {self.light} lights"
+        if self.series == "cold":
+            return f"{casters} after a {self.cold_after}-caster frame, {self.light}"
         count = f"{self.triangles:_}".replace("_", " ")
         return f"{count} triangles, {self.light}"
 
@@ -144,8 +155,10 @@ def overhead_scenes(*, quick: bool = False, huge: bool = False) -> list[Overhead
     -------
     list of OverheadScene
         The standard scene with each kind of light, then the series over
-        casters (1, 50, 500, 1000), spot lights (1, 4, 16) and triangles of one
-        caster under a point light (10 k, 1 M, and 10 M with ``huge``).
+        casters (1, 50, 500, 1000), one caster with caches left cold by a
+        1000-caster frame (:attr:`OverheadScene.cold_after`), spot lights
+        (1, 4, 16) and triangles of one caster under a point light (10 k,
+        1 M, and 10 M with ``huge``).
 
     Examples
     --------
@@ -159,6 +172,7 @@ def overhead_scenes(*, quick: bool = False, huge: bool = False) -> list[Overhead
         return [OverheadScene("standard", "point")]
     scenes = [OverheadScene("standard", kind) for kind in ("point", "spot", "directional")]
     scenes += [OverheadScene("actors", actors=n) for n in (1, 50, 500, 1000)]
+    scenes.append(OverheadScene("cold", actors=1, cold_after=1000))
     scenes += [OverheadScene("lights", lights=n) for n in (1, 4, 16)]
     counts = (10_000, 1_000_000, 10_000_000) if huge else (10_000, 1_000_000)
     scenes += [OverheadScene("triangles", "point", actors=1, triangles=n) for n in counts]
@@ -254,7 +268,11 @@ def _move(plotter, lights: list, moved, motion: str, frame: int) -> None:
         moved.AddPosition(1e-3 if frame % 2 else -1e-3, 0.0, 0.0)
 
 
-def _timed_frame(plotter) -> float:
+def _timed_frame(plotter, chill=None) -> float:
+    """Return the CPU ms of one frame of ``plotter``, after an untimed frame of ``chill``."""
+    if chill is not None:
+        chill.camera.Azimuth(0.5)
+        chill.ren_win.Render()
     start = time.thread_time()
     plotter.ren_win.Render()
     return (time.thread_time() - start) * 1e3
@@ -296,9 +314,12 @@ def measure_frames(
     twins = [build_scene(scene), build_scene(scene)]
     shadowed, lights, _ = twins[1]
     shadowed.shadows.enable(lights=lights)
-    for plotter, _, _ in twins:
+    chill = None
+    if scene.cold_after:
+        chill = build_scene(OverheadScene("actors", scene.light, actors=scene.cold_after))[0]
+    for plotter in [plotter for plotter, _, _ in twins] + ([chill] if chill else []):
         plotter.screenshot(return_img=True)
-    slowest = max(_timed_frame(plotter) for plotter, _, _ in twins)
+    slowest = max(_timed_frame(plotter, chill) for plotter, _, _ in twins)
     frames = int(max(3, min(frames, budget_s * 1e3 / (2 * len(MOTIONS) * max(slowest, 1e-3)))))
     plain: dict[str, list[float]] = {motion: [] for motion in MOTIONS}
     added: dict[str, list[float]] = {motion: [] for motion in MOTIONS}
@@ -311,14 +332,14 @@ def measure_frames(
                 pair = []
                 for plotter, moved_lights, moved in twins:
                     _move(plotter, moved_lights, moved, motion, frame)
-                    pair.append(_timed_frame(plotter))
+                    pair.append(_timed_frame(plotter, chill))
                 if frame >= 2:  # the first two settle what the last motion left
                     plain[motion].append(pair[0])
                     added[motion].append(pair[1] - pair[0])
                     report = shadowed.shadows.last_frame
                     own[motion].append(report.cpu_ms)
                     submitted[motion].append(report.pass_cpu_ms)
-    for plotter, _, _ in twins:
+    for plotter in [plotter for plotter, _, _ in twins] + ([chill] if chill else []):
         plotter.close()
     plain_ms, added_ms, own_ms, passes_ms = (
         {motion: statistics.median(values[motion]) for motion in MOTIONS}
@@ -440,7 +461,7 @@ def run_overhead(
     for scene in scenes:
         spec = {"scene": asdict(scene), "frames": frames, "budget_s": budget_s, "mode": "frames"}
         row = OverheadRow(scene, **_in_subprocess(spec, noop=True))
-        if first_frame:
+        if first_frame and not scene.cold_after:  # a control of per-frame time only
             first = _in_subprocess({**spec, "mode": "first"}, noop=False)
             row.first_plain_s, row.first_shadowed_s = (
                 first["first_plain_s"],
@@ -450,7 +471,7 @@ def run_overhead(
         added = ", ".join(f"{m} {row.added_ms[m]:+.2f}" for m in MOTIONS)
         progress(
             f"overhead {scene.label}: {added} ms over a plain {row.plain_ms['static']:.2f} ms; "
-            f"first frame {row.first_shadowed_s:.2f} s vs {row.first_plain_s:.2f} s"
+            f"first frame s (plain) {_first(row)}"
         )
     return rows
 
@@ -512,7 +533,7 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
         The markdown written, to print.
     """
     out.mkdir(parents=True, exist_ok=True)
-    fields = ["scene", "series", "light", "actors", "lights", "triangles", "frames"]
+    fields = ["scene", "series", "light", "actors", "lights", "triangles", "cold_after", "frames"]
     fields += [f"plain_{m}_ms" for m in MOTIONS] + [f"added_{m}_ms" for m in MOTIONS]
     fields += [f"own_{m}_ms" for m in MOTIONS] + [f"passes_{m}_ms" for m in MOTIONS]
     fields += ["first_plain_s", "first_shadowed_s"]
@@ -541,7 +562,7 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
     lines += [
         f"| {row.scene.label} | {row.plain_ms['static']:.2f} "
         + "".join(f"| {_added(row, m)} " for m in MOTIONS)
-        + f"| {row.first_shadowed_s:.2f} ({row.first_plain_s:.2f}) | {row.frames} |"
+        + f"| {_first(row)} | {row.frames} |"
         for row in rows
     ]
     fits = growth_fits(rows)
@@ -554,6 +575,13 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
     text = "\n".join(lines) + "\n"
     (out / "overhead.md").write_text(text, encoding="utf-8")
     return text
+
+
+def _first(row: OverheadRow) -> str:
+    """Return a table cell: the first frame's seconds, the twin's in brackets, or "not timed"."""
+    if math.isnan(row.first_shadowed_s):
+        return "not timed"
+    return f"{row.first_shadowed_s:.2f} ({row.first_plain_s:.2f})"
 
 
 def _added(row: OverheadRow, motion: str) -> str:
