@@ -156,6 +156,43 @@ def test_boxes_tested_in_plain_floats_get_the_answers_numpy_gives(seed):
 
 
 @pytest.mark.parametrize("seed", range(3))
+def test_boxes_tested_against_many_spots_at_once_get_each_spots_own_answers(seed):
+    from pvshadows.scene.culling import SpotCones, boxes_in_spots
+
+    rng = np.random.default_rng(seed)
+    inside = 0
+    for _ in range(20):
+        poses = [_random_pose(rng) for _ in range(int(rng.integers(2, 17)))]
+        centres, halves = rng.uniform(-6, 6, (5, 3)), rng.uniform(0.01, 1.5, (5, 3))
+        boxes = np.stack([centres - halves, centres + halves], axis=1)
+        together = boxes_in_spots(boxes, SpotCones(poses))
+        assert together.tolist() == [boxes_in_spot(boxes, pose).tolist() for pose in poses]
+        inside += int(together.sum())
+    assert 0 < inside < together.size * 20
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_boxes_measured_from_many_spots_at_once_get_each_spots_own_bits(seed):
+    from pvshadows.scene.spot_fitting import cone_measures, cone_measures_many
+
+    rng = np.random.default_rng(seed)
+    for trial in range(30):
+        scale = 10.0 ** rng.uniform(-6, 9)
+        poses = [_random_pose(rng) for _ in range(int(rng.integers(2, 9)))]
+        poses = [LightPose(LightKind.SPOT, p.position * scale, p.direction, 40.0) for p in poses]
+        count = int(rng.integers(1, 5))
+        centres = np.array([p.position for p in poses])[:, None] + rng.normal(
+            size=(len(poses), count, 3)
+        ) * (4 * scale)
+        halves = rng.uniform(0.01, 1.5, (len(poses), count, 3)) * scale
+        boxes = np.stack([centres - halves, centres + halves], axis=2)
+        together = np.array(cone_measures_many(poses, boxes))
+        pairs = zip(poses, boxes, strict=True)
+        apart = np.stack([np.array(cone_measures(p, b)) for p, b in pairs], axis=1)
+        assert together.tobytes() == apart.tobytes(), trial
+
+
+@pytest.mark.parametrize("seed", range(3))
 def test_one_box_measured_alone_from_a_spot_gets_the_bits_it_gets_among_many(seed):
     """A moved caster is measured alone in plain floats: the same distances and spread,
     to the last bit, as numpy's among many, at every scale, beside and behind the light."""

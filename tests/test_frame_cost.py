@@ -586,6 +586,34 @@ def test_a_spots_measures_patched_over_moved_actors_match_measures_taken_afresh(
         assert getattr(patched, name).tolist() == getattr(fresh, name).tolist()
 
 
+def test_an_actor_moved_under_many_spot_lights_is_tested_and_measured_for_all_in_one_call():
+    from pvshadows.scene.measures import CasterMeasureCache
+    from pvshadows.scene.spot_fitting import cone_measures
+    from pvshadows.tools.overhead import OverheadScene, build_scene
+
+    pl, lights, moved = build_scene(OverheadScene("lights", "spot", lights=5), (200, 150))
+    pl.shadows.enable(lights=lights, filter="hard")
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    group = shadows.technique("map")._spot_measures
+    batches, tests = (shadows.reach.batches, group.batches), shadows.reach.tests
+    for step in range(3):
+        moved.AddPosition(0.05, 0.02 * step, 0.0)
+        draw(pl)
+    assert (shadows.reach.batches, group.batches) == (batches[0] + 3, batches[1] + 3)
+    assert shadows.reach.tests - tests == 3 * len(lights)  # the moved box, once per light
+    assert pl.shadows.last_frame.passes_run == len(lights)
+    states = shadows.technique("map")._states
+    for plan in shadows.plans:
+        if plan.cast is None:
+            continue
+        patched = states[plan.key].measures.of(plan.cast.pose, shadows.snapshot).values
+        fresh = CasterMeasureCache(cone_measures).of(plan.cast.pose, shadows.snapshot).values
+        assert np.array(patched).tobytes() == np.array(fresh).tobytes()
+    for light in lights:
+        assert pl.shadows.measure(light).misclassified <= 0.002
+
+
 def test_a_snapshot_remembers_the_rows_of_its_latest_subsets_only():
     from pvshadows.scene.snapshot import KEPT_SUBSETS
 

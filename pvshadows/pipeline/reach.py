@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from pvshadows.scene.culling import boxes_in_spot
+from pvshadows.scene.culling import MANY_LIGHTS, SpotCones, boxes_in_spot, boxes_in_spots
 from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.snapshot import Snapshot
 
@@ -42,6 +42,8 @@ class _Reached:
     hits: np.ndarray
     #: The last pose the cover was found to hold (the test is skipped for it).
     pose_key: tuple
+    #: The answers on the snapshot's parent, when these were patched from them.
+    before: np.ndarray | None = None
 
 
 def light_cover(pose: LightPose, snapshot: Snapshot) -> LightPose:
@@ -149,8 +151,12 @@ class ReachCache:
 
     def __init__(self) -> None:
         self._lights: dict[str, _Reached] = {}
-        #: Cone tests run since the cache was made (one per actor tested).
+        #: The covers last stacked for a test of many lights at once, and their stack.
+        self._cones: tuple[list[LightPose], SpotCones] | None = None
+        #: Cone tests run since the cache was made (one per actor and light tested).
         self.tests = 0
+        #: Times the actors replaced in a snapshot were tested against several lights at once.
+        self.batches = 0
 
     def reaches(self, light: str, pose: LightPose, snapshot: Snapshot) -> np.ndarray:
         """Return, for each of a snapshot's actors, whether the light can reach it (conservative).
@@ -176,13 +182,11 @@ class ReachCache:
             return np.ones(len(snapshot.actors), dtype=bool)
         kept = self._held(light, pose)
         if kept is not None:
+            if kept.snapshot is not snapshot and snapshot.parent is kept.snapshot:
+                self._bring_to(snapshot)
+                kept = self._lights[light]
             if kept.snapshot is snapshot:
                 return kept.hits
-            if snapshot.parent is kept.snapshot:
-                rows = list(snapshot.replaced)
-                hits = kept.hits.copy()
-                hits[rows] = boxes_in_spot(snapshot.actor_bounds[rows], kept.cover)
-                return self._keep(light, kept.cover, pose, snapshot, hits, len(rows))
         cover = light_cover(pose, snapshot)
         hits = boxes_in_spot(snapshot.actor_bounds, cover)
         return self._keep(light, cover, pose, snapshot, hits, len(hits))
@@ -214,9 +218,53 @@ class ReachCache:
         if pose.kind is not LightKind.SPOT:
             return bool(rows)
         kept = self._held(light, pose)
-        known = kept is not None and kept.snapshot is snapshot.parent
-        before = kept.hits[rows].any() if kept is not None and known else True
-        return bool(before or self.reaches(light, pose, snapshot)[rows].any())
+        before: np.ndarray | None
+        if kept is not None and kept.snapshot is snapshot.parent:
+            before = kept.hits
+        elif kept is not None and kept.snapshot is snapshot:
+            before = kept.before  # brought here from the parent along with another light
+        else:
+            before = None
+        if before is None or before[rows].any():
+            return True
+        return bool(self.reaches(light, pose, snapshot)[rows].any())
+
+    def _bring_to(self, snapshot: Snapshot) -> None:
+        """Test the actors replaced in ``snapshot`` for every light whose answers are its parent's.
+
+        One batched test for all those lights (:func:`boxes_in_spots`,
+        from :data:`~pvshadows.scene.culling.MANY_LIGHTS` lights on), each
+        against its cover; a light whose cover no longer holds its
+        cone is tested afresh when asked, as before.
+        """
+        parent = snapshot.parent
+        followers = [key for key, kept in self._lights.items() if kept.snapshot is parent]
+        rows = list(snapshot.replaced)
+        boxes = snapshot.actor_bounds[rows]
+        covers = [self._lights[key].cover for key in followers]
+        if len(covers) < MANY_LIGHTS:
+            answers = np.array([boxes_in_spot(boxes, cover) for cover in covers])
+        else:
+            answers = boxes_in_spots(boxes, self._stacked(covers))
+            self.batches += 1
+        for key, answer in zip(followers, answers, strict=True):
+            kept = self._lights[key]
+            hits = kept.hits.copy()
+            hits[rows] = answer
+            hits.setflags(write=False)
+            self._lights[key] = _Reached(kept.cover, snapshot, hits, kept.pose_key, kept.hits)
+            self.tests += len(rows)
+
+    def _stacked(self, covers: list[LightPose]) -> SpotCones:
+        """Return the covers stacked for :func:`boxes_in_spots` (again only when one changed)."""
+        kept = self._cones
+        if (
+            kept is None
+            or len(kept[0]) != len(covers)
+            or not all(a is b for a, b in zip(kept[0], covers, strict=True))
+        ):
+            kept = self._cones = (covers, SpotCones(covers))
+        return kept[1]
 
     def _held(self, light: str, pose: LightPose) -> _Reached | None:
         """Return the light's kept answers if their cover holds its cone this frame."""
@@ -253,5 +301,8 @@ class ReachCache:
         lights : set of str
             Keys of the lights still planned.
         """
-        for key in set(self._lights) - lights:
+        gone = set(self._lights) - lights
+        for key in gone:
             del self._lights[key]
+        if gone:
+            self._cones = None

@@ -17,13 +17,15 @@ across frames measures its casters again only when it leaves the margin.
 from __future__ import annotations
 
 import math
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Generic, NamedTuple, TypeVar
+from typing import Generic, NamedTuple, TypeVar, cast
 
 import numpy as np
 
-from pvshadows.scene.culling import widened_boxes
+from pvshadows.scene.actor_state import ActorState
+from pvshadows.scene.culling import MANY_LIGHTS, widened_boxes
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import CASTERS, Snapshot
 
@@ -76,6 +78,9 @@ class CasterMeasureCache(Generic[MeasuresT]):
         Whether the measures depend on the light's direction (a spot's spread
         about its axis): then they are kept only while the light turns by at
         most :data:`TURN_DEGREES`.
+    group : MeasureGroup, optional
+        The caches of the other lights of the same kind: a snapshot's
+        replaced casters are then measured for all of them in one call.
 
     Attributes
     ----------
@@ -115,10 +120,17 @@ class CasterMeasureCache(Generic[MeasuresT]):
     """
 
     def __init__(
-        self, measure: Callable[[LightPose, np.ndarray], MeasuresT], *, turns: bool = False
+        self,
+        measure: Callable[[LightPose, np.ndarray], MeasuresT],
+        *,
+        turns: bool = False,
+        group: MeasureGroup[MeasuresT] | None = None,
     ) -> None:
         self._measure = measure
         self._turns = turns
+        self._group = group
+        if group is not None:
+            group.join(self)
         self._base: LightPose | None = None
         self._margin = 0.0
         #: A lower bound of the distance from ``_base`` to the nearest caster.
@@ -173,24 +185,42 @@ class CasterMeasureCache(Generic[MeasuresT]):
 
     def _brought_to(self, snapshot: Snapshot) -> MeasuresT | None:
         """Return the kept measures brought up to ``snapshot``, or ``None`` if it is not theirs."""
-        kept = self._measures
         if snapshot is self._snapshot:
-            return kept
-        if self._snapshot is None or snapshot.parent is not self._snapshot or kept is None:
+            return self._measures
+        if not self._follows(snapshot):
             return None
         patches = snapshot.patches(CASTERS)
-        self.measured += len(patches)
+        if patches and self._group is not None:
+            self._group.bring_to(snapshot, patches)
+        else:
+            self._patch(snapshot, patches)
+        return self._measures
+
+    def _patch(self, snapshot: Snapshot, patches: list[tuple[int, ActorState]]) -> None:
+        """Measure the replaced casters of ``snapshot`` on their own and take them in."""
+        if not patches:
+            self._take(snapshot, [], None)
+            return
+        assert self._base is not None  # measures were taken from it
+        bounds = np.array([state.bounds for _, state in patches])
+        fresh = self._measure(self._base, widened_boxes(bounds, self._margin))
+        self._take(snapshot, [row for row, _ in patches], fresh)
+
+    def _follows(self, snapshot: Snapshot) -> bool:
+        """Whether the kept measures are of the snapshot's parent (patched, they are its)."""
+        kept = self._snapshot
+        return kept is not None and snapshot.parent is kept and self._measures is not None
+
+    def _take(self, snapshot: Snapshot, rows: list[int], fresh: MeasuresT | None) -> None:
+        """Hold the measures of ``snapshot``: the kept ones with ``fresh`` in ``rows``."""
+        self.measured += len(rows)
         self._snapshot = snapshot
-        if patches:
-            assert self._base is not None  # measures were taken from it
-            rows = [row for row, _ in patches]
-            boxes = widened_boxes(np.array([state.bounds for _, state in patches]), self._margin)
-            fresh = self._measure(self._base, boxes)
-            pairs = zip(kept, fresh, strict=True)
-            kept = kept._make(_patched(old, rows, new) for old, new in pairs)
-            self._measures = kept
-            self._nearest = min(self._nearest, _nearest_of(fresh))
-        return kept
+        kept = self._measures
+        if fresh is None or kept is None:
+            return
+        pairs = zip(kept, fresh, strict=True)
+        self._measures = kept._make(_patched(old, rows, new) for old, new in pairs)
+        self._nearest = min(self._nearest, _nearest_of(fresh))
 
     def _measure_all(self, pose: LightPose, snapshot: Snapshot, margin: float) -> None:
         boxes = snapshot.caster_bounds
@@ -199,6 +229,92 @@ class CasterMeasureCache(Generic[MeasuresT]):
         self._base, self._margin, self._snapshot, self._measures = pose, margin, snapshot, measures
         # The widened boxes are no farther than the boxes themselves.
         self._nearest = _nearest_of(measures)
+
+
+class MeasureGroup(Generic[MeasuresT]):
+    """The caster measures of several lights, brought up to a new snapshot in one call.
+
+    A caster that moved under many lights is measured from all of them
+    together when the first of them asks, instead of once per light (from
+    :data:`~pvshadows.scene.culling.MANY_LIGHTS` lights on).
+
+    Parameters
+    ----------
+    measure_many : callable
+        ``measure_many(poses, boxes)``, with ``(lights, n, 2, 3)`` boxes,
+        returns the named tuple of ``(lights, n)`` arrays whose row ``i`` is
+        what the members' ``measure`` gives for ``poses[i]`` and
+        ``boxes[i]``, to the same bits (for example
+        :func:`pvshadows.scene.spot_fitting.cone_measures_many`).
+
+    Attributes
+    ----------
+    batches : int
+        Times several members were measured in one call (for tests).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pyvista as pv
+    >>> from pvshadows.scene.spot_fitting import cone_measures, cone_measures_many
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> from pvshadows.scene.measures import CasterMeasureCache, MeasureGroup
+    >>> from pvshadows.scene.reader import SceneReader
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> box = pl.add_mesh(pv.Cube(center=(0, 0, -5)))
+    >>> reader = SceneReader(lambda actor: "a cube")
+    >>> group = MeasureGroup(cone_measures_many)
+    >>> down = np.array([0, 0, -1.0])
+    >>> poses = [LightPose(LightKind.SPOT, np.array([x, 0, 0]), down, 45.0) for x in (-1, 0, 1)]
+    >>> caches = [CasterMeasureCache(cone_measures, turns=True, group=group) for _ in poses]
+    >>> snapshot = reader.read(pl.renderer)
+    >>> [c.of(p, snapshot).values.near.tolist() for c, p in zip(caches, poses)]
+    [[20.5], [20.25], [20.5]]
+    >>> box.position = (0, 0, 1)
+    >>> snapshot = reader.read(pl.renderer)
+    >>> [c.of(p, snapshot).values.near.tolist() for c, p in zip(caches, poses)], group.batches
+    ([[12.5], [12.25], [12.5]], 1)
+    """
+
+    def __init__(self, measure_many: Callable[[list[LightPose], np.ndarray], MeasuresT]) -> None:
+        self._measure_many = measure_many
+        self._members: weakref.WeakSet[CasterMeasureCache[MeasuresT]] = weakref.WeakSet()
+        self.batches = 0
+
+    def join(self, cache: CasterMeasureCache[MeasuresT]) -> None:
+        """Add a light's cache (it leaves when it is let go of).
+
+        Parameters
+        ----------
+        cache : CasterMeasureCache
+            The cache.
+        """
+        self._members.add(cache)
+
+    def bring_to(self, snapshot: Snapshot, patches: list[tuple[int, ActorState]]) -> None:
+        """Measure the casters replaced in ``snapshot`` for every member whose measures follow it.
+
+        Parameters
+        ----------
+        snapshot : Snapshot
+            This frame's actors, following the members' last snapshot.
+        patches : list of tuple
+            Its ``(row in casters, new state)`` of the casters replaced.
+        """
+        followers = [cache for cache in self._members if cache._follows(snapshot)]
+        if len(followers) < MANY_LIGHTS:
+            for cache in followers:
+                cache._patch(snapshot, patches)
+            return
+        rows = [row for row, _ in patches]
+        bounds = np.array([state.bounds for _, state in patches])
+        boxes = np.stack([widened_boxes(bounds, cache._margin) for cache in followers])
+        bases = [cache._base for cache in followers]
+        assert all(base is not None for base in bases)  # measures were taken from them
+        fresh = self._measure_many(cast(list[LightPose], bases), boxes)
+        self.batches += 1
+        for i, cache in enumerate(followers):
+            cache._take(snapshot, rows, fresh._make(values[i] for values in fresh))
 
 
 def _distance(a: LightPose, b: LightPose) -> float:

@@ -283,6 +283,64 @@ def cone_measures(pose: LightPose, boxes: np.ndarray) -> ConeMeasures:
     return ConeMeasures(near, far, spread)
 
 
+def cone_measures_many(poses: list[LightPose], boxes: np.ndarray) -> ConeMeasures:
+    """Measure boxes from several spot lights at once, each as :func:`cone_measures` does.
+
+    The same operations in the same order, with a first axis over the
+    lights: each row has the bits :func:`cone_measures` gives for its light.
+
+    Parameters
+    ----------
+    poses : list of LightPose
+        The spot lights (the poses their casters are measured about).
+    boxes : numpy.ndarray
+        ``(lights, n, 2, 3)`` world bounds: each light's own boxes (widened
+        by its own margin, say).
+
+    Returns
+    -------
+    ConeMeasures
+        Each of ``(lights, n)``: a row per light.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.scene.spot_fitting import cone_measures_many
+    >>> from pvshadows.scene.lights import LightKind, LightPose
+    >>> down = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 45.0)
+    >>> up = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, 1.0]), 45.0)
+    >>> box = np.array([[-1.0, -1, -4], [1, 1, -2]])
+    >>> cone_measures_many([down, up], np.array([[box], [box]])).spread.tolist()
+    [[0.5], [inf]]
+    """
+    positions = np.array([pose.position for pose in poses])[:, None, :, None]
+    # (lights, 2, 3, n): as box_offsets lays out each light's boxes, less its position
+    offsets = boxes.transpose(0, 2, 3, 1) - positions
+    lo, hi = offsets[:, 0], offsets[:, 1]
+    outside = np.maximum(np.maximum(lo, -hi), 0.0)
+    corner = np.maximum(np.abs(lo), np.abs(hi))
+    near, far = (_lengths_squared(rows) for rows in (outside, corner))
+    rotations = np.array([_spot_rotation(pose)[:3, :3] for pose in poses])
+    # box_corners_along with a first axis over the lights: each term, then their sum
+    terms = rotations[:, :, None, :, None] * offsets[:, None]
+    x = terms[:, :, :, 0, None, None]
+    y = terms[:, :, None, :, 1, None]
+    z = terms[:, :, None, None, :, 2]
+    along = (x + y + z).reshape(len(poses), 3, 8, -1)
+    depth = np.negative(along[:, 2])
+    in_front = depth.min(axis=1) > 0.0
+    depth = np.where(in_front[:, None], depth, 1.0)
+    spread = (np.maximum(np.abs(along[:, 0]), np.abs(along[:, 1])) / depth).max(axis=1)
+    spread[~in_front] = np.inf
+    return ConeMeasures(near, far, spread)
+
+
+def _lengths_squared(rows: np.ndarray) -> np.ndarray:
+    """Return :func:`~pvshadows.geometry.transforms.squared_lengths` of ``(lights, 3, n)`` rows."""
+    x, y, z = rows[:, 0], rows[:, 1], rows[:, 2]
+    return (x * x + z * z) + y * y
+
+
 def spot_shadowing_rows(
     pose: LightPose, casters: list[ActorState], snapshot: Snapshot
 ) -> np.ndarray:

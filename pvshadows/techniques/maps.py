@@ -26,10 +26,11 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.passes.map_depth import MapDepthPass
 from pvshadows.passes.transmittance import TranslucentCaster
 from pvshadows.scene.lights import LightKind, LightPose
-from pvshadows.scene.measures import CasterMeasureCache
+from pvshadows.scene.measures import CasterMeasureCache, MeasureGroup
 from pvshadows.scene.spot_fitting import (
     ConeMeasures,
     cone_measures,
+    cone_measures_many,
     spot_fit,
     spot_fit_holds,
     spot_shadowing_rows,
@@ -117,6 +118,8 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         super().__init__(window)
         self._pass = MapDepthPass(window)
         self._companions = Companions(window)
+        #: Every spot light's caster measures: a caster moved under many is measured in one call.
+        self._spot_measures: MeasureGroup[ConeMeasures] = MeasureGroup(cone_measures_many)
 
     def _state(self, plan: Cast) -> MapState:
         key = plan.key
@@ -125,7 +128,8 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             if state is not None:
                 state.release()
             resolution = plan.settings.resolution
-            state = MapState(DepthMap(self._window, resolution))
+            measures = CasterMeasureCache(cone_measures, turns=True, group=self._spot_measures)
+            state = MapState(DepthMap(self._window, resolution), measures=measures)
             state.still = self._still_casters(lambda: DepthMap(self._window, resolution))
             self._states[key] = state
         return state
