@@ -192,9 +192,6 @@ def test_lights_with_and_without_translucent_casters_are_looked_up_in_their_own_
     assert code.count("#define PVS_GROUP_TRANSLUCENT") == 1
     assert code.count("#define PVS_GROUP_LOOKUP pvsSpotHard") == 2
     own = {"pvsDepth0": 3, "pvsTransmit0": 4, "pvsDepth1": 5}
-    for i in (0, 1):
-        own |= {f"pvsParams{i}": (1, 0, 0, 0), f"pvsViewToLight{i}": np.eye(4)}
-        own[f"pvsLightToClip{i}"] = np.eye(4)
     packed = group_uniforms(lookups, own)
     assert packed["pvsSpotHardTranslucentTransmit"] == [4]
     assert packed["pvsSpotHardTranslucentDepth"] == [3] and packed["pvsSpotHardDepth"] == [5]

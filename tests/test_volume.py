@@ -293,7 +293,7 @@ def test_directional_fallback_hook(monkeypatch):
         def shading(self, plan):
             return LightShading(plan.vtk_index, "pvsStub", sources=("shadow_mask.glsl",))
 
-        def activate(self, plan, context):
+        def activate(self, plan, context, entry):
             return {}
 
         def end_frame(self):

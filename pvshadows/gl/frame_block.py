@@ -20,47 +20,97 @@ start of each of the renderer's frames, after pvshadows' own passes.
 from __future__ import annotations
 
 import ctypes
+import struct
 from collections.abc import Mapping
-from typing import NamedTuple
+from dataclasses import dataclass
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 
-_EYE = np.eye(4)
 #: The uniform buffer binding point of the block: every program's default.
 BINDING = 0
 #: ``GL_UNIFORM_BUFFER`` and ``GL_DYNAMIC_DRAW``, as plain ints.
 _UNIFORM_BUFFER, _DYNAMIC_DRAW = 0x8A11, 0x88E8
+_NO_VECTOR = (0.0, 0.0, 0.0, 0.0)
 
 
-class LightEntry(NamedTuple):
+@dataclass(slots=True)
+class LightEntry:
     """One light's ``PvsLight`` entry of the frame's uniform block (``glsl/frame_block.glsl``).
+
+    The frame makes one per shadowed light and the light's technique fills
+    in what it reads (:meth:`pvshadows.techniques.base.Technique.activate`);
+    what it leaves is the default.
 
     Attributes
     ----------
-    view_to_light : numpy.ndarray
-        ``(4, 4)``: view coordinates to the light's space (the identity for
-        a light that reads no map).
-    pack : tuple
-        The four columns of the pack: params, cone, bias and filter
-        (radius in texels, taps, layer in a cube array, 0).
+    strength : float
+        The light's shadow strength.
+    view_to_light : numpy.ndarray or None
+        ``(4, 4)``: view coordinates to the light's space; ``None`` for the
+        identity (a light that reads no map).
+    params, cone, bias : tuple of float
+        The pack's first three columns: the map's far distance, texel and
+        light size or fit; a spot's axis and cosine; the biases.
+    filter_radius : float
+        The filter's radius in texels.
+    taps : int
+        PCF's grid side, or the samples of the random and PCSS filters.
+    layer : float
+        The light's layer in a cube array.
     light_to_clip : numpy.ndarray or None
         ``(4, 4)``: light space to a spot map's clip space; ``None`` for
         the identity.
-    light_vc : tuple
+    light_vc : tuple of float
         The light in view coordinates for a screen mask's facing test:
         ``(position, 1)`` or ``(direction towards the light, 0)``.
-    strength : float
-        The light's shadow strength.
     """
 
-    view_to_light: np.ndarray
-    pack: tuple
-    light_to_clip: np.ndarray | None
-    light_vc: tuple
     strength: float
+    view_to_light: np.ndarray | None = None
+    params: tuple = _NO_VECTOR
+    cone: tuple = _NO_VECTOR
+    bias: tuple = _NO_VECTOR
+    filter_radius: float = 0.0
+    taps: int = 0
+    layer: float = 0.0
+    light_to_clip: np.ndarray | None = None
+    light_vc: tuple = _NO_VECTOR
+
+    def floats(self) -> list[float]:
+        """Return the entry's floats as GLSL reads them (matrices by columns: transposed).
+
+        Returns
+        -------
+        list of float
+            :data:`ENTRY_FLOATS` values.
+
+        Examples
+        --------
+        >>> from pvshadows.gl.frame_block import LightEntry
+        >>> floats = LightEntry(0.5, params=(2.0, 0.1, 0.0, 0.0), taps=4).floats()
+        >>> floats[16:18], floats[29], floats[52]
+        ([2.0, 0.1], 4, 0.5)
+        """
+        view, clip = self.view_to_light, self.light_to_clip
+        return [
+            *(_EYE_FLOATS if view is None else view.T.flat),
+            *self.params,
+            *self.cone,
+            *self.bias,
+            self.filter_radius,
+            self.taps,
+            self.layer,
+            0.0,
+            *(_EYE_FLOATS if clip is None else clip.T.flat),
+            *self.light_vc,
+            self.strength,
+            0.0,
+            0.0,
+            0.0,
+        ]
 
 
 #: Floats before the lights' entries: the probe's light and a zero (ints, padded to
@@ -68,6 +118,12 @@ class LightEntry(NamedTuple):
 HEADER_FLOATS = 8
 #: Floats of one entry: three matrices and two vectors.
 ENTRY_FLOATS = 3 * 16 + 2 * 4
+#: The identity's 16 floats: a matrix a light leaves out.
+_EYE_FLOATS = tuple(np.eye(4).ravel().tolist())
+#: The header's bytes (the probe's index, a zero, padding, the viewport) and an entry's.
+_HEADER = struct.Struct("=2i8x4f")
+_ENTRY = struct.Struct(f"={ENTRY_FLOATS}f")
+_EMPTY_ENTRY = bytes(_ENTRY.size)
 
 
 class FrameBlock:
@@ -94,11 +150,18 @@ class FrameBlock:
         self._gl = gl
         self._send, self._bind_base = glBufferData, glBindBufferBase
         self._buffer = int(gl.glGenBuffers(1))
-        self._data = np.zeros(0, dtype=np.float32)
-        self._probe = self._data.view(np.int32)
+        self._data = bytearray()
+        self._view = (ctypes.c_char * 0).from_buffer(self._data)
         self._pointer = ctypes.c_void_p(0)
+        #: The entries filled last frame (a light gone since is zeroed).
+        self._written: set[int] = set()
         self._sent = b""
         self.uploads = 0
+
+    @property
+    def floats(self) -> np.ndarray:
+        """The block as it was last filled, as float32 (the probe's index is an int's bits)."""
+        return np.frombuffer(bytes(self._data), dtype=np.float32)
 
     def update(
         self,
@@ -115,9 +178,8 @@ class FrameBlock:
         Parameters
         ----------
         entries : dict
-            Each light's entry by its VTK light index
-            (:func:`pvshadows.shaders.library.take_light_entries`); the
-            entries of other lights are zero.
+            Each shadowed light's entry by its VTK light index; the entries
+            of other lights are zero.
         probe : int, default: -1
             The VTK index of the light a probe frame shows, or -1.
         viewport : tuple of float, default: (0.0, 0.0, 1.0, 1.0)
@@ -125,45 +187,40 @@ class FrameBlock:
 
         Examples
         --------
-        >>> import numpy as np
         >>> import pyvista as pv
         >>> from pvshadows.gl.frame_block import FrameBlock, LightEntry
         >>> pl = pv.Plotter(off_screen=True)
         >>> pl.ren_win.Render()
         >>> block = FrameBlock(pl.ren_win)
-        >>> entry = LightEntry(np.eye(4), ((0.0,) * 4,) * 4, None, (0, 0, 1, 1), 0.8)
+        >>> entry = LightEntry(0.8, light_vc=(0.0, 0.0, 1.0, 1.0))
         >>> block.update({0: entry}, probe=-1, viewport=(0, 0, 300, 200))
         >>> block.update({0: entry}, probe=-1, viewport=(0, 0, 300, 200))
         >>> block.uploads
         1
         """
         capacity = max(8, 2 * (max(entries, default=-1) + 1))
-        size = HEADER_FLOATS + capacity * ENTRY_FLOATS
+        size = (HEADER_FLOATS + capacity * ENTRY_FLOATS) * 4
         data = self._data
-        if data.size < size:
-            data = self._data = np.zeros(size, dtype=np.float32)
-            self._probe = data[:1].view(np.int32)
-            self._pointer = ctypes.c_void_p(data.ctypes.data)  # read once: a ctypes view per read
-        else:
-            data.fill(0.0)
-        self._probe[0] = probe
-        data[4:HEADER_FLOATS] = viewport
-        block = data[HEADER_FLOATS:].reshape(-1, ENTRY_FLOATS)
-        # GLSL reads matrices by columns: each stored matrix is the transpose
+        if len(data) < size:
+            data = self._data = bytearray(size)
+            # Held: the bytes stay where the pointer says (a bytearray exported to ctypes
+            # cannot be resized), and the pointer is read once, not a ctypes view per read.
+            self._view = (ctypes.c_char * size).from_buffer(data)
+            self._pointer = ctypes.c_void_p(ctypes.addressof(self._view))
+            self._written = set()
+        _HEADER.pack_into(data, 0, probe, 0, *viewport)
+        offset, step = HEADER_FLOATS * 4, _ENTRY.size
+        for index in self._written.difference(entries):
+            data[offset + index * step : offset + (index + 1) * step] = _EMPTY_ENTRY
+        self._written = set(entries)
         for index, entry in entries.items():
-            row = block[index]
-            row[0:16].reshape(4, 4)[:] = entry.view_to_light.T
-            row[16:32].reshape(4, 4)[:] = entry.pack
-            light_to_clip = _EYE if entry.light_to_clip is None else entry.light_to_clip
-            row[32:48].reshape(4, 4)[:] = light_to_clip.T
-            row[48:52] = entry.light_vc
-            row[52] = entry.strength
+            _ENTRY.pack_into(data, offset + index * step, *entry.floats())
         # Binding to the indexed point binds the buffer to GL_UNIFORM_BUFFER too, where
         # glBufferData reads it.
         self._bind_base(_UNIFORM_BUFFER, BINDING, self._buffer)
-        sent = data.tobytes()  # compared as bytes: a NaN parameter equals itself
+        sent = bytes(data)  # compared as bytes: a NaN parameter equals itself
         if sent != self._sent:
-            self._send(_UNIFORM_BUFFER, data.nbytes, self._pointer, _DYNAMIC_DRAW)
+            self._send(_UNIFORM_BUFFER, len(data), self._pointer, _DYNAMIC_DRAW)
             self._sent = sent
             self.uploads += 1
 

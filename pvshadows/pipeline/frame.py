@@ -20,7 +20,7 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.buffers import forget_pointer_records
-from pvshadows.gl.frame_block import FrameBlock
+from pvshadows.gl.frame_block import FrameBlock, LightEntry
 from pvshadows.gl.sampler_units import SamplerUnits
 from pvshadows.gl.texture_units import park_active_unit
 from pvshadows.gl.timing import PassTimer
@@ -35,7 +35,6 @@ from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.scene.view import FrameView
 from pvshadows.shaders.edits import ReceiverEdits
-from pvshadows.shaders.library import take_light_entries
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.base import FrameContext, Technique
@@ -183,7 +182,7 @@ class RendererShadows:
         self._context = context
         report = self._building
         uniforms: dict[str, object] = {}
-        strengths: dict[int, float] = {}
+        entries: dict[int, LightEntry] = {}
         shadings = []
         light_space: list[LightShading] = []
         self._active = []
@@ -198,13 +197,17 @@ class RendererShadows:
             self._where = f"light {plan.index} ({plan.kind.value}, {cast.technique})"
             technique = self.technique(cast.technique)
             light_report.passes = technique.update(cast, context)
-            shadings.append(technique.shading(cast))
-            strengths[cast.vtk_index] = cast.settings.strength
+            shading = technique.shading(cast)
+            shadings.append(shading)
+            entry = entries[cast.vtk_index] = LightEntry(cast.settings.strength)
+            for lookup in shading.needs:
+                if lookup.vtk_index == cast.vtk_index:
+                    entry.taps = lookup.taps
             if cast.technique in LIGHT_SPACE_TECHNIQUES:
-                light_space.append(shadings[-1])
+                light_space.append(shading)
             if technique not in self._active:
                 self._active.append(technique)
-            uniforms.update(technique.activate(cast, context))
+            uniforms.update(technique.activate(cast, context, entry))
         self._note_impostors(plans, snapshot)
         for light_report, plan in zip(report.lights, plans, strict=True):
             light_report.notes = list(plan.notes)
@@ -216,8 +219,6 @@ class RendererShadows:
             self._buffers.keep_only(snapshot.actors)
         self._where = "receiver shader edits"
         assert self._block is not None  # made by _start_gl
-        lookups = [lookup for shading in shadings for lookup in shading.needs]
-        entries = take_light_entries(strengths, lookups, uniforms)
         self._block.update(entries, self.probe_index, self._viewport(context, plans))
         self._apply_edits(snapshot, shadings, uniforms, light_space, view.planes)
         assert self._units is not None  # made by _start_gl

@@ -19,11 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import cast
 
-import numpy as np
-
-from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.programs import glsl_source
 
 #: Kinds of depth map and the GLSL names the filter file uses for each. "cubes"
@@ -120,10 +116,10 @@ class MapLookup:
     The light's sampler units (``pvsDepth{i}``, ``pvsTransmit{i}``,
     ``pvsOffsets{i}``, ``pvsRaw{i}``) are packed into the group's arrays by
     :func:`group_uniforms`; what its pose, fit, settings and the camera
-    decide (``pvsViewToLight{i}``, ``pvsParams{i}``, ``pvsBias{i}``,
-    ``pvsCone{i}``, ``pvsLightToClip{i}``, ``pvsFilterRadius{i}``,
-    ``pvsLayer{i}``) goes to its entry of the frame's uniform block
-    (:func:`take_light_entries`, :class:`pvshadows.gl.frame_block.FrameBlock`),
+    decide (its view-to-light matrix, parameters, biases, cone, projection,
+    filter radius and layer) goes to its entry of the frame's uniform block
+    (:class:`pvshadows.gl.frame_block.LightEntry`, which the light's
+    technique fills, and :class:`pvshadows.gl.frame_block.FrameBlock`),
     so that moving a light or the camera sends nothing to receivers; its
     visibility is the GLSL float :attr:`visibility_name`.
 
@@ -399,74 +395,8 @@ def extensions(lookups: Iterable[MapLookup]) -> list[str]:
     return list(dict.fromkeys(EXTENSIONS[m.kind] for m in lookups if m.kind in EXTENSIONS))
 
 
-#: Prefixes of each light's own uniforms that go to its entry of the frame's uniform
-#: block (``glsl/frame_block.glsl``), not to receivers: :func:`take_light_entries`.
-BLOCK_UNIFORMS = (
-    "pvsViewToLight",
-    "pvsParams",
-    "pvsCone",
-    "pvsBias",
-    "pvsFilterRadius",
-    "pvsLightToClip",
-    "pvsLayer",
-    "pvsLightVC",
-)
 #: Prefixes of each light's own uniforms, which :func:`group_uniforms` packs.
 OWN_UNIFORMS = ("pvsDepth", "pvsTransmit", "pvsRaw", "pvsOffsets")
-
-
-_NO_VECTOR = (0.0, 0.0, 0.0, 0.0)
-
-
-def take_light_entries(
-    strengths: Mapping[int, float], lookups: Iterable[MapLookup], uniforms: dict[str, object]
-) -> dict[int, LightEntry]:
-    """Remove the lights' block uniforms from ``uniforms``; return each light's block entry.
-
-    Parameters
-    ----------
-    strengths : Mapping
-        The shadow strength of each shadowed light, by VTK light index.
-    lookups : iterable of MapLookup
-        The map lookups of this frame's lights (their taps go to the entry).
-    uniforms : dict
-        Every light's uniforms by name, as the techniques set them; the
-        names in :data:`BLOCK_UNIFORMS` of the shadowed lights are removed.
-
-    Returns
-    -------
-    dict
-        Each shadowed light's :class:`LightEntry`, by VTK light index.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from pvshadows.shaders.library import MapLookup, take_light_entries
-    >>> uniforms = {"pvsViewToLight1": np.eye(4), "pvsParams1": (2, 0, 0, 0), "pvsDepth1": 3}
-    >>> entries = take_light_entries({1: 0.5}, [MapLookup("cube", "pcf", 1, 4)], uniforms)
-    >>> entries[1].pack[0], entries[1].pack[3], entries[1].strength, uniforms
-    ((2, 0, 0, 0), (0.0, 4, 0.0, 0.0), 0.5, {'pvsDepth1': 3})
-    """
-    taps = {lookup.vtk_index: lookup.taps for lookup in lookups}
-    entries = {}
-    for i, strength in strengths.items():
-        taken = {name: uniforms.pop(f"{name}{i}", None) for name in BLOCK_UNIFORMS}
-        radius, layer = taken["pvsFilterRadius"], taken["pvsLayer"]
-        pack = (
-            _NO_VECTOR if taken["pvsParams"] is None else taken["pvsParams"],
-            _NO_VECTOR if taken["pvsCone"] is None else taken["pvsCone"],
-            _NO_VECTOR if taken["pvsBias"] is None else taken["pvsBias"],
-            (radius or 0.0, taps.get(i, 0), layer or 0.0, 0.0),
-        )
-        view = taken["pvsViewToLight"]
-        entries[i] = LightEntry(
-            np.eye(4) if view is None else cast(np.ndarray, view),
-            pack,
-            cast("np.ndarray | None", taken["pvsLightToClip"]),
-            cast(tuple, _NO_VECTOR if taken["pvsLightVC"] is None else taken["pvsLightVC"]),
-            float(strength),
-        )
-    return entries
 
 
 def group_uniforms(
@@ -479,8 +409,7 @@ def group_uniforms(
     lookups : iterable of MapLookup
         The map lookups of a receiver's lights.
     uniforms : Mapping
-        Every light's uniforms by name, as the techniques set them, less
-        those :func:`take_light_entries` took for the frame's block
+        Every light's textures by name, as the techniques return them
         (``pvsDepth{i}`` and so on, see :class:`MapLookup`).
 
     Returns

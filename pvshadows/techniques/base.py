@@ -7,6 +7,7 @@ from typing import ClassVar, Protocol, TypeVar
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
+from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.plan import Cast
 from pvshadows.model.report import PassReport
@@ -88,8 +89,8 @@ class Technique(Protocol[CastT]):
     def shading(self, plan: CastT) -> LightShading:
         """Return how receivers read the light's shadow data."""
 
-    def activate(self, plan: CastT, context: FrameContext) -> dict[str, object]:
-        """Return the receivers' uniform values: the light's textures, matrices and parameters."""
+    def activate(self, plan: CastT, context: FrameContext, entry: LightEntry) -> dict[str, object]:
+        """Fill the light's entry of the frame's block; return the receivers' textures by name."""
 
     def end_frame(self) -> None:
         """Let go of what only this frame needed, once its receivers drew."""

@@ -29,6 +29,7 @@ from pvshadows.geometry.transforms import (
 )
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.cube_array import CubeArray, CubeSlot, cube_arrays_supported
+from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.textures import DepthCube
 from pvshadows.gl.transmittance_textures import TransmittanceCube, TransmittanceTexture
 from pvshadows.model.plan import Cast
@@ -354,8 +355,8 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             translucent=state.companion is not None,
         )
 
-    def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
-        """Return the receivers' uniforms: the light's cube and filter textures, and more.
+    def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
+        """Fill the light's block entry (its matrix and parameters); return its textures.
 
         Parameters
         ----------
@@ -363,11 +364,14 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             The light's cast.
         context : FrameContext
             This frame's renderer and camera.
+        entry : LightEntry
+            The light's entry of the frame's uniform block.
 
         Returns
         -------
         dict
-            Uniform names and values for every receiver.
+            The cube's and filter's textures by uniform name, and those of
+            this frame's earlier lights whose cube array grew.
         """
         state = self._states[plan.key]
         settings = plan.settings
@@ -376,23 +380,15 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         spot = pose.kind is LightKind.SPOT
         cone = math.cos(math.radians(pose.cone_angle)) if spot else -2.0
         uniforms = self._array_bindings(plan, context)
-        uniforms.update(self._filters.activate(i, settings, state.cube if state.drawn else None))
+        drawn = state.cube if state.drawn else None
+        uniforms.update(self._filters.activate(i, settings, drawn, entry))
         if state.companion is not None:
             uniforms.update(self._filters.activate_transmittance(i, state.companion.texture))
         if isinstance(state.cube, CubeSlot):
-            uniforms[f"pvsLayer{i}"] = float(state.cube.slot)
-        uniforms.update(
-            {
-                f"pvsViewToLight{i}": context.view.to_frame_at(pose.position),
-                f"pvsParams{i}": (
-                    state.far,
-                    2.0 / settings.resolution,
-                    settings.light_size,
-                    state.nearest,
-                ),
-                f"pvsCone{i}": (*pose.direction, cone),
-            }
-        )
+            entry.layer = float(state.cube.slot)
+        entry.view_to_light = context.view.to_frame_at(pose.position)
+        entry.params = (state.far, 2.0 / settings.resolution, settings.light_size, state.nearest)
+        entry.cone = (*pose.direction.tolist(), cone)
         return uniforms
 
     def _array_bindings(self, plan: Cast, context: FrameContext) -> dict[str, object]:
@@ -411,7 +407,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
                 state = self._states[earlier.key]
                 if isinstance(state.cube, CubeSlot) and state.drawn:
                     uniforms.update(
-                        self._filters.activate(earlier.vtk_index, earlier.settings, state.cube)
+                        self._filters.samplers(earlier.vtk_index, earlier.settings, state.cube)
                     )
         self._allocations = allocations
         self._activated.append(plan)

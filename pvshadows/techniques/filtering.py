@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.cube_array import CubeSlot
+from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.sampler_units import TextureBinding
 from pvshadows.gl.sampling import DiskOffsets, RawDepthView
 from pvshadows.gl.textures import DepthTexture
@@ -61,8 +62,8 @@ def lookup_shading(
     -------
     LightShading
         The light's :class:`~pvshadows.shaders.library.MapLookup` (it reads the
-        uniforms ``pvsDepth{i}``, ``pvsParams{i}``, ``pvsViewToLight{i}``,
-        ``pvsBias{i}``, ...) and the visibility it sets.
+        sampler ``pvsDepth{i}`` and the light's entry of the frame's uniform
+        block) and the visibility it sets.
 
     Examples
     --------
@@ -109,9 +110,13 @@ class FilterBindings:
         return self._offsets[count]
 
     def activate(
-        self, vtk_index: int, settings: ShadowSettings, depth: DepthTexture | CubeSlot | None
+        self,
+        vtk_index: int,
+        settings: ShadowSettings,
+        depth: DepthTexture | CubeSlot | None,
+        entry: LightEntry,
     ) -> dict:
-        """Return the uniforms of one light's map and filter textures.
+        """Set one light's biases and filter radius in its entry; return its map's textures.
 
         Parameters
         ----------
@@ -121,25 +126,48 @@ class FilterBindings:
             Its filter and bias settings.
         depth : DepthTexture, CubeSlot or None
             Its shadow map, ``None`` when it had nothing to draw.
+        entry : LightEntry
+            The light's entry of the frame's uniform block.
 
         Returns
         -------
         dict
-            The textures (:class:`~pvshadows.gl.sampler_units.TextureBinding`),
-            biases and filter radius, by uniform name.
+            :meth:`samplers`.
         """
-        i = vtk_index
-        bias = (settings.normal_offset, settings.bias, settings.slope_bias, 0.0)
+        entry.bias = (settings.normal_offset, settings.bias, settings.slope_bias, 0.0)
+        if depth is not None and settings.filter in ("random", "pcss"):
+            entry.filter_radius = float(settings.filter_radius)
+        return self.samplers(vtk_index, settings, depth)
+
+    def samplers(
+        self, vtk_index: int, settings: ShadowSettings, depth: DepthTexture | CubeSlot | None
+    ) -> dict:
+        """Return the textures one light's map and filter read.
+
+        Parameters
+        ----------
+        vtk_index : int
+            The light's index among VTK's switched-on lights.
+        settings : ShadowSettings
+            Its filter settings.
+        depth : DepthTexture, CubeSlot or None
+            Its shadow map, ``None`` when it had nothing to draw.
+
+        Returns
+        -------
+        dict
+            The textures (:class:`~pvshadows.gl.sampler_units.TextureBinding`)
+            by uniform name: ``pvsDepth{i}``, and the random and PCSS
+            filters' ``pvsOffsets{i}`` and ``pvsRaw{i}``; none without a map.
+        """
         if depth is None:
-            return {f"pvsBias{i}": bias}
-        uniforms: dict[str, object] = {
-            f"pvsDepth{i}": TextureBinding.of(f"pvsDepth{i}", depth.texture),
-            f"pvsBias{i}": bias,
-        }
+            return {}
+        i = vtk_index
+        depth_name = f"pvsDepth{i}"
+        uniforms: dict[str, object] = {depth_name: TextureBinding.of(depth_name, depth.texture)}
         if settings.filter in ("random", "pcss"):
             offsets = self._offsets_for(settings.samples)
             uniforms[f"pvsOffsets{i}"] = TextureBinding.of(f"pvsOffsets{i}", offsets.texture)
-            uniforms[f"pvsFilterRadius{i}"] = float(settings.filter_radius)
         if settings.filter == "pcss":
             if self._raw is None:
                 self._raw = RawDepthView(self._window)

@@ -18,6 +18,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
+from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.textures import DepthMap
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import Cast
@@ -395,8 +396,8 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             translucent=state.companion is not None,
         )
 
-    def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
-        """Return the receivers' uniforms: the light's map and filter textures, and more.
+    def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
+        """Fill the light's block entry (its matrices and parameters); return its textures.
 
         Parameters
         ----------
@@ -404,23 +405,27 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             The light's cast.
         context : FrameContext
             This frame's camera.
+        entry : LightEntry
+            The light's entry of the frame's uniform block.
 
         Returns
         -------
         dict
-            Uniform names and values for every receiver.
+            The map's and filter's textures, by uniform name.
         """
         state = self._states[plan.key]
         i = plan.vtk_index
-        uniforms = self._filters.activate(i, plan.settings, state.depth if state.drawn else None)
+        samplers = self._filters.activate(
+            i, plan.settings, state.depth if state.drawn else None, entry
+        )
         if state.companion is not None:
-            uniforms.update(self._filters.activate_transmittance(i, state.companion.texture))
-        uniforms[f"pvsViewToLight{i}"] = state.world_to_light @ context.view.view_to_world
-        uniforms[f"pvsParams{i}"] = state.params
+            samplers.update(self._filters.activate_transmittance(i, state.companion.texture))
+        entry.view_to_light = state.world_to_light @ context.view.view_to_world
+        entry.params = state.params
         if _kind(plan) == "spot":
             # A point light's map covers only its casters' cone; it lights beyond it.
             lit = plan.kind is LightKind.SPOT
             cone = math.cos(math.radians(plan.pose.cone_angle)) if lit else -2.0
-            uniforms[f"pvsLightToClip{i}"] = state.light_to_clip
-            uniforms[f"pvsCone{i}"] = (*plan.pose.direction.tolist(), cone)
-        return uniforms
+            entry.light_to_clip = state.light_to_clip
+            entry.cone = (*plan.pose.direction.tolist(), cone)
+        return samplers

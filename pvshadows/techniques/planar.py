@@ -35,6 +35,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import translation
+from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.mask_target import MaskTexture
 from pvshadows.model.plan import Cast, PlanarCast
 from pvshadows.model.report import PassReport
@@ -327,8 +328,8 @@ class PlanarTechnique:
             plan.vtk_index, only_on=frozenset({state.plane_actor}), elsewhere=facing_only
         )
 
-    def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
-        """Return the receivers' uniforms: the light's mask and facing test.
+    def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
+        """Fill the light's block entry (the facing test's light); return its mask's texture.
 
         Parameters
         ----------
@@ -336,16 +337,18 @@ class PlanarTechnique:
             The light's cast.
         context : FrameContext
             This frame's renderer and camera.
+        entry : LightEntry
+            The light's entry of the frame's uniform block.
 
         Returns
         -------
         dict
-            Uniform names and values for every receiver.
+            The mask's texture by uniform name (none without a plane).
         """
         state = self._lights.get(plan.key)
         if state is None or state.plane_actor is None:
-            return mask_uniforms(plan, context, None)
-        return mask_uniforms(plan, context, state.mask)
+            return mask_uniforms(plan, context, None, entry)
+        return mask_uniforms(plan, context, state.mask, entry)
 
     def end_frame(self) -> None:
         """Nothing to let go of: the masks stay bound on the receivers' units."""

@@ -9,6 +9,7 @@ uniforms of that lookup, so both techniques name them the same way.
 
 from __future__ import annotations
 
+from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.mask_target import MaskTexture
 from pvshadows.gl.sampler_units import TextureBinding
 from pvshadows.model.plan import Cast
@@ -84,8 +85,10 @@ def mask_shading(
     )
 
 
-def mask_uniforms(plan: Cast, context: FrameContext, mask: MaskTexture | None) -> dict[str, object]:
-    """Return the uniforms of a light's mask lookup.
+def mask_uniforms(
+    plan: Cast, context: FrameContext, mask: MaskTexture | None, entry: LightEntry
+) -> dict[str, object]:
+    """Set the light in view coordinates in its block entry; return the mask's texture.
 
     Parameters
     ----------
@@ -95,19 +98,18 @@ def mask_uniforms(plan: Cast, context: FrameContext, mask: MaskTexture | None) -
         This frame's camera and render target.
     mask : MaskTexture or None
         The mask; ``None`` for the facing test alone.
+    entry : LightEntry
+        The light's entry of the frame's uniform block: its ``light_vc`` is
+        set, for the facing test.
 
     Returns
     -------
     dict
-        ``pvsLightVC{i}`` (for the light's entry of the frame's uniform
-        block), and with a mask its texture ``pvsMask{i}``
-        (:class:`~pvshadows.gl.sampler_units.TextureBinding`).
+        With a mask its texture ``pvsMask{i}``
+        (:class:`~pvshadows.gl.sampler_units.TextureBinding`), else empty.
     """
-    i = plan.vtk_index
-    uniforms: dict[str, object] = {
-        f"pvsLightVC{i}": context.view.light_in_view(plan.pose.homogeneous())
-    }
+    entry.light_vc = tuple(context.view.light_in_view(plan.pose.homogeneous()).tolist())
     if mask is None:
-        return uniforms
-    uniforms[f"pvsMask{i}"] = TextureBinding.of(f"pvsMask{i}", mask.texture)
-    return uniforms
+        return {}
+    name = f"pvsMask{plan.vtk_index}"
+    return {name: TextureBinding.of(name, mask.texture)}

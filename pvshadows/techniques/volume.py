@@ -46,6 +46,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.geometry.silhouette import volume_geometry
 from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.gl.buffers import IndexedBuffers
+from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
 from pvshadows.model.plan import Cast, VolumeCast
 from pvshadows.model.report import PassReport
@@ -412,8 +413,8 @@ class VolumeTechnique:
         name, subplan = state.fallback
         return combine_shadings(own, self._fallbacks.technique(name).shading(subplan))
 
-    def activate(self, plan: Cast, context: FrameContext) -> dict[str, object]:
-        """Return the receivers' uniforms: the light's mask and facing test.
+    def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
+        """Fill the light's block entry (facing test, a fallback's map); return its textures.
 
         Parameters
         ----------
@@ -421,19 +422,22 @@ class VolumeTechnique:
             The light's cast.
         context : FrameContext
             This frame's renderer and camera.
+        entry : LightEntry
+            The light's entry of the frame's uniform block, which the open
+            casters' fallback fills too.
 
         Returns
         -------
         dict
-            Uniform names and values for every receiver.
+            The mask's and the fallback's textures, by uniform name.
         """
         state = self._lights.get(plan.key)
         if state is None:
             return {}
-        uniforms = mask_uniforms(plan, context, state.mask)
+        uniforms = mask_uniforms(plan, context, state.mask, entry)
         if state.fallback is not None:
             name, subplan = state.fallback
-            uniforms.update(self._fallbacks.technique(name).activate(subplan, context))
+            uniforms.update(self._fallbacks.technique(name).activate(subplan, context, entry))
         return uniforms
 
     def end_frame(self) -> None:
