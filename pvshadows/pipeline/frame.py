@@ -90,7 +90,9 @@ class RendererShadows:
         self.last_frame = FrameReport()
         #: The exception that made the last frame draw without shadows, else ``None``.
         self.error: Exception | None = None
-        self._where = ""
+        #: What the frame is doing, for the report of a frame that fails: in words, or
+        #: the light being brought up to date (put in words only then).
+        self._where: str | LightPlan = ""
         self._building = FrameReport()
         #: Let techniques draw debug overlays (``draw_debug``) over the finished frame.
         self.show_debug = False
@@ -194,7 +196,7 @@ class RendererShadows:
             cast = plan.cast
             if cast is None:
                 continue
-            self._where = f"light {plan.index} ({plan.kind.value}, {cast.technique})"
+            self._where = plan
             technique = self.technique(cast.technique)
             light_report.passes = technique.update(cast, context)
             shading = technique.shading(cast)
@@ -267,7 +269,7 @@ class RendererShadows:
         fails too is named in the report instead.
         """
         self.error = error
-        where = f"{self._where}{_raised_in(error)}"
+        where = f"{_in_words(self._where)}{_raised_in(error)}"
         troubles = self._undo()
         failure = FrameFailure(self._frame, where, f"{type(error).__name__}: {error}", troubles)
         previous = self.last_frame.failure
@@ -382,6 +384,14 @@ class RendererShadows:
         self._techniques.clear()
         self._window = None
         self._window_parts = ()
+
+
+def _in_words(where: str | LightPlan) -> str:
+    """Return what a frame was doing, e.g. ``"light 0 (spot, map)"`` for the light it was at."""
+    if isinstance(where, str):
+        return where
+    assert where.cast is not None  # only a light that casts is brought up to date
+    return f"light {where.index} ({where.kind.value}, {where.cast.technique})"
 
 
 def _raised_in(error: Exception) -> str:

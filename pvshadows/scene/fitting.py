@@ -11,6 +11,8 @@ All of it is computed in double precision.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from pvshadows.scene.actor_state import ActorState
@@ -43,7 +45,7 @@ def up_for(direction: np.ndarray) -> np.ndarray:
     return np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < 0.99 else np.array([0.0, 1.0, 0.0])
 
 
-def flat_and_lit_above(state: ActorState, direction: np.ndarray, snapshot: Snapshot) -> bool:
+def flat_and_lit_above(state: ActorState, direction: Sequence[float], snapshot: Snapshot) -> bool:
     """Return whether a caster is a flat sheet with every other receiver on its lit side.
 
     Such a caster (a ground) shadows nothing, so a map's fit leaves it out.
@@ -52,8 +54,9 @@ def flat_and_lit_above(state: ActorState, direction: np.ndarray, snapshot: Snaps
     ----------
     state : ActorState
         The caster.
-    direction : numpy.ndarray
-        ``(3,)`` from the light along its rays at the caster.
+    direction : sequence of float
+        ``(3,)`` from the light along its rays at the caster, in plain floats
+        (or a numpy array).
     snapshot : Snapshot
         This frame's actors: the receivers and their bounds.
 
@@ -70,6 +73,7 @@ def flat_and_lit_above(state: ActorState, direction: np.ndarray, snapshot: Snaps
         return True
     tolerance = 1e-6 * sheet.size
     # The lit side is the one the light is on: against the rays.
-    if float(sheet.normal @ direction) > 0.0:
+    (nx, ny, nz), (dx, dy, dz) = sheet.normal.tolist(), direction
+    if nx * dx + ny * dy + nz * dz > 0.0:
         return high <= tolerance
     return low >= -tolerance

@@ -200,6 +200,11 @@ class Snapshot:
         return self._stacked("caster_flat", CASTERS, lambda s: s.sheet is not None, ())
 
     @cached_property
+    def flat_caster_rows(self) -> list[int]:
+        """The rows of :attr:`casters` that are flat (:attr:`caster_flat`), in plain ints."""
+        return np.flatnonzero(self.caster_flat).tolist()
+
+    @cached_property
     def caster_transmittance(self) -> np.ndarray:
         """:attr:`ActorState.transmittance` of :attr:`casters`, ``(n,)``."""
         return self._stacked("caster_transmittance", CASTERS, lambda s: s.transmittance, ())

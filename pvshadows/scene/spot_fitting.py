@@ -364,11 +364,29 @@ def spot_shadowing_rows(
         ``(n,)`` rows of the casters that matter for the fit of the light's map.
     """
     rows = snapshot.caster_rows(casters)
-    keep = ~snapshot.caster_flat[rows]
-    if keep.all():
+    flat = snapshot.flat_caster_rows
+    if not flat:
         return rows
-    for row in np.flatnonzero(~keep).tolist():
-        state = casters[row]
-        away = 0.5 * (state.bounds[0] + state.bounds[1]) - pose.position
-        keep[row] = not flat_and_lit_above(state, away, snapshot)
+    every = casters is snapshot.casters
+    flat_here = snapshot.caster_flat if every else snapshot.caster_flat[rows]
+    if not every:
+        flat = np.flatnonzero(flat_here).tolist()
+    # plain floats for three-vectors: numpy's per-call cost outweighs its speed here
+    px, py, pz = pose.position.tolist()
+    shadowing = [
+        position
+        for position in flat
+        if not flat_and_lit_above(casters[position], _away(casters[position], px, py, pz), snapshot)
+    ]
+    if len(shadowing) == len(flat):
+        return rows
+    keep = ~flat_here
+    if shadowing:
+        keep[shadowing] = True
     return rows[keep]
+
+
+def _away(state: ActorState, px: float, py: float, pz: float) -> tuple[float, float, float]:
+    """Return the offset from a light at ``(px, py, pz)`` to the centre of an actor's bounds."""
+    (x0, y0, z0), (x1, y1, z1) = state.bounds.tolist()
+    return 0.5 * (x0 + x1) - px, 0.5 * (y0 + y1) - py, 0.5 * (z0 + z1) - pz

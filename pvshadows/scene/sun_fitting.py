@@ -335,12 +335,13 @@ def sun_actors(
     keep = ~snapshot.caster_flat
     flat = np.flatnonzero(snapshot.caster_flat).tolist()
     grazing = math.sin(slack)
+    towards = pose.direction.tolist()
     for row in flat:
         sheet = casters[row].sheet
         turns_over = (
             slack > 0.0 and sheet is not None and abs(sheet.normal @ pose.direction) <= grazing
         )
-        keep[row] = turns_over or not flat_and_lit_above(casters[row], pose.direction, snapshot)
+        keep[row] = turns_over or not flat_and_lit_above(casters[row], towards, snapshot)
     if len(flat) == len(casters) and not keep.any():
         return None
     low, high = snapshot.scene_box

@@ -94,6 +94,19 @@ class MapState(LightState):
     planned: Cast | None = None
     planned_fit: SunFit | None = None
     still: StillCasters[DepthMap] | None = None
+    #: The pose a spot map's cone (its axis and cosine, or -2 where it lights beyond
+    #: it) was last worked out for, and that cone.
+    cone: tuple[LightPose | None, tuple] = (None, ())
+
+    def cone_of(self, plan: Cast) -> tuple:
+        """Return the light's axis and its cone's cosine (-2 for a point light's map)."""
+        pose, cone = self.cone
+        if pose is not plan.pose:
+            lit = plan.kind is LightKind.SPOT
+            cosine = math.cos(math.radians(plan.pose.cone_angle)) if lit else -2.0
+            cone = (*plan.pose.direction.tolist(), cosine)
+            self.cone = (plan.pose, cone)
+        return cone
 
     def release_map(self) -> None:
         """Release the map."""
@@ -424,8 +437,6 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         entry.params = state.params
         if _kind(plan) == "spot":
             # A point light's map covers only its casters' cone; it lights beyond it.
-            lit = plan.kind is LightKind.SPOT
-            cone = math.cos(math.radians(plan.pose.cone_angle)) if lit else -2.0
             entry.light_to_clip = state.light_to_clip
-            entry.cone = (*plan.pose.direction.tolist(), cone)
+            entry.cone = state.cone_of(plan)
         return samplers
