@@ -201,3 +201,22 @@ def test_technique_map_refuses_point_lights():
     pl.add_light(bulb)
     with pytest.raises(ValueError, match="technique='map' cannot serve this point light"):
         pl.shadows.configure(bulb, technique="map")
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_a_suns_rotation_is_the_look_rotation_along_it_turned_round_bit_for_bit(seed):
+    from pvshadows.geometry.transforms import look_rotation
+    from pvshadows.scene.fitting import up_for
+    from pvshadows.scene.lights import LightKind, LightPose
+    from pvshadows.scene.sun_fitting import sun_rotation
+
+    rng = np.random.default_rng(seed)
+    for trial in range(500):
+        direction = rng.normal(size=3)
+        if trial % 3 == 0:  # near the vertical, where the up vector switches
+            direction[:2] *= 10.0 ** rng.uniform(-9, -1)
+        direction /= np.linalg.norm(direction)
+        expected = look_rotation(direction, up_for(direction))
+        expected[::2] *= -1.0  # x and z turned round
+        pose = LightPose(LightKind.DIRECTIONAL, np.zeros(3), direction, 90.0)
+        assert sun_rotation(pose).tobytes() == expected.tobytes(), trial

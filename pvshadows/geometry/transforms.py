@@ -8,6 +8,7 @@ the size of the scene, not of its distance from the origin.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -51,21 +52,46 @@ def look_rotation(forward: npt.ArrayLike, up: npt.ArrayLike) -> np.ndarray:
     >>> bool(np.allclose(rotation, np.eye(4)))
     True
     """
+    along = np.asarray(forward, dtype=np.float64).tolist()
+    right, upward, backward = look_axes(along, np.asarray(up, dtype=np.float64).tolist())
+    return np.array([[*right, 0.0], [*upward, 0.0], [*backward, 0.0], [0.0, 0.0, 0.0, 1.0]])
+
+
+def look_axes(
+    forward: Sequence[float], up: Sequence[float]
+) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float]]:
+    """Return the rows of :func:`look_rotation`'s rotation, worked out in plain floats.
+
+    Parameters
+    ----------
+    forward, up : sequence of float
+        Viewing direction and approximate up vector (need not be unit).
+
+    Returns
+    -------
+    tuple
+        The camera's right, up and backward axes in world coordinates, unit
+        three-tuples.
+
+    Examples
+    --------
+    >>> from pvshadows.geometry.transforms import look_axes
+    >>> right, up, backward = look_axes((0.0, 0.0, -2.0), (0.0, 1.0, 0.0))
+    >>> right[0], up[1], backward[2]
+    (1.0, 1.0, 1.0)
+    """
     # Three-vectors in Python floats: numpy's cross and norm cost far more than the sums.
-    fx, fy, fz = np.asarray(forward, dtype=np.float64).tolist()
+    fx, fy, fz = forward
     length = math.sqrt(fx * fx + fy * fy + fz * fz)
     fx, fy, fz = fx / length, fy / length, fz / length
-    ux, uy, uz = np.asarray(up, dtype=np.float64).tolist()
+    ux, uy, uz = up
     rx, ry, rz = fy * uz - fz * uy, fz * ux - fx * uz, fx * uy - fy * ux
     length = math.sqrt(rx * rx + ry * ry + rz * rz)
     rx, ry, rz = rx / length, ry / length, rz / length
-    return np.array(
-        [
-            [rx, ry, rz, 0.0],
-            [ry * fz - rz * fy, rz * fx - rx * fz, rx * fy - ry * fx, 0.0],
-            [-fx, -fy, -fz, 0.0],
-            [0.0, 0.0, 0.0, 1.0],
-        ]
+    return (
+        (rx, ry, rz),
+        (ry * fz - rz * fy, rz * fx - rx * fz, rx * fy - ry * fx),
+        (-fx, -fy, -fz),
     )
 
 

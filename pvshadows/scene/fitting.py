@@ -20,6 +20,9 @@ from pvshadows.scene.snapshot import Snapshot
 
 #: Texels of margin kept on each side of the fitted region.
 MARGIN_TEXELS = 2
+#: A map looking along a direction whose z is at least this (in size) is turned by
+#: world y rather than world z (:func:`up_for`).
+UP_SWITCH = 0.99
 
 
 def up_for(direction: np.ndarray) -> np.ndarray:
@@ -42,7 +45,7 @@ def up_for(direction: np.ndarray) -> np.ndarray:
     >>> up_for(np.array([0.0, 0.0, -1.0])).tolist()
     [0.0, 1.0, 0.0]
     """
-    return np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < 0.99 else np.array([0.0, 1.0, 0.0])
+    return np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < UP_SWITCH else np.array([0.0, 1.0, 0.0])
 
 
 def flat_and_lit_above(state: ActorState, direction: Sequence[float], snapshot: Snapshot) -> bool:

@@ -13,16 +13,14 @@ from functools import cached_property
 
 import numpy as np
 
-from pvshadows.geometry.transforms import (
-    look_rotation,
-    translation,
-)
+from pvshadows.geometry.transforms import look_axes, translation
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.culling import widened_boxes
-from pvshadows.scene.fitting import MARGIN_TEXELS, flat_and_lit_above, up_for
+from pvshadows.scene.fitting import MARGIN_TEXELS, UP_SWITCH, flat_and_lit_above
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import Snapshot
 
+_LAST_ROW = (0.0, 0.0, 0.0, 1.0)
 #: Sizes of the sun's map are rounded up to steps of 2 ** (1 / SIZE_STEPS_PER_OCTAVE).
 SIZE_STEPS_PER_OCTAVE = 8
 #: Degrees a moving directional light may turn before its fit reads its actors again
@@ -60,11 +58,38 @@ class SunFit:
         return 2.0 * self.half_width / self.resolution
 
     def world_to_light(self) -> np.ndarray:
-        """Return the ``(4, 4)`` matrix from world to light space."""
-        return self.rotation @ translation(-self.origin)
+        """Return the ``(4, 4)`` matrix from world to light space (worked out once; read-only)."""
+        return self._world_to_light
+
+    @cached_property
+    def _world_to_light(self) -> np.ndarray:
+        matrix = self.rotation @ translation(-self.origin)
+        matrix.setflags(write=False)
+        return matrix
+
+    def light_to_clip(self) -> np.ndarray:
+        """Return the ``(4, 4)`` orthographic projection across the map (made once; read-only).
+
+        Light-space x and y within :attr:`half_width` map to [-1, 1]; depth
+        is written by the pass itself, so z maps to 0.
+        """
+        return self._light_to_clip
+
+    @cached_property
+    def _light_to_clip(self) -> np.ndarray:
+        scale = 1.0 / self.half_width
+        matrix = np.array(
+            [[scale, 0.0, 0.0, 0.0], [0.0, scale, 0.0, 0.0], [0.0] * 4, [0.0, 0.0, 0.0, 1.0]]
+        )
+        matrix.setflags(write=False)
+        return matrix
 
     def key(self) -> tuple:
         """Return a value that changes whenever the map's coverage changes."""
+        return self._key
+
+    @cached_property
+    def _key(self) -> tuple:
         return (self.rotation.tobytes(), self.origin.tobytes(), self.half_width, self.depth)
 
     @cached_property
@@ -94,7 +119,7 @@ class SunFit:
             return True
         if self.resolution != needed.resolution or (
             self.rotation is not needed.rotation
-            and not np.array_equal(self.rotation, needed.rotation)
+            and self.rotation.tobytes() != needed.rotation.tobytes()
         ):
             return False
         (x, y, z), (x_needed, y_needed, z_needed) = self.near_center, needed.near_center
@@ -146,9 +171,11 @@ def sun_rotation(pose: LightPose) -> np.ndarray:
     >>> sun_rotation(pose)[2, :3].tolist()
     [0.0, 0.0, -1.0]
     """
-    rotation = look_rotation(pose.direction, up_for(pose.direction))
-    rotation[::2] *= -1.0  # rows 0 and 2: x and z turned round
-    return rotation
+    direction = pose.direction.tolist()
+    hint = (0.0, 0.0, 1.0) if abs(direction[2]) < UP_SWITCH else (0.0, 1.0, 0.0)
+    (rx, ry, rz), up, (bx, by, bz) = look_axes(direction, hint)
+    # The camera's x and z turned round (the zeros' signs too, as a negated row has them).
+    return np.array([[-rx, -ry, -rz, -0.0], [*up, 0.0], [-bx, -by, -bz, -0.0], _LAST_ROW])
 
 
 #: What a sun's map is fitted round, across and along the light, from the actors' pivot:
@@ -208,7 +235,8 @@ class SunActors:
         if rotation is self.rotation:
             return True
         # The angle of the rotation from one to the other: trace(A Bᵀ) = 1 + 2 cos(angle).
-        trace = float((rotation[:3, :3] * self.rotation[:3, :3]).sum())
+        mine, theirs = rotation[:3, :3].ravel().tolist(), self.rotation[:3, :3].ravel().tolist()
+        trace = sum(a * b for a, b in zip(mine, theirs, strict=True))
         return math.acos(max(-1.0, min(1.0, 0.5 * (trace - 1.0)))) <= self.slack
 
     def offset(self, rotation: np.ndarray) -> list[float]:

@@ -273,11 +273,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             assert seen_by_sun is not None  # a fit is made from it
             kept = state.casters_of = (fit, actors, seen_by_sun.casters_in(fit, context.snapshot))
         drawn = kept[2]
-        state.world_to_light = fit.world_to_light()
-        scale = 1.0 / fit.half_width
-        state.light_to_clip = np.array(
-            [[scale, 0.0, 0.0, 0.0], [0.0, scale, 0.0, 0.0], [0.0] * 4, [0.0, 0.0, 0.0, 1.0]]
-        )
+        state.world_to_light, state.light_to_clip = fit.world_to_light(), fit.light_to_clip()
         tangent = math.tan(math.radians(settings.light_size))
         state.params = (fit.depth, fit.texel, fit.half_width, tangent)
         key = (pose.key(), settings.resolution, settings.cull_front, fit.key())
