@@ -17,6 +17,9 @@ from pvshadows.gl.timing import PassTimer
 from pvshadows.model.report import PassReport
 from pvshadows.passes.gl_state import FaceCulling, depth_only_state
 
+#: Every face of a cube, as the bits of a caster's face mask.
+_ALL_FACES = 0b111111
+
 
 class CubeDepthPass:
     """Fills a :class:`~pvshadows.gl.textures.DepthCube` with distance-to-light over ``far``.
@@ -84,6 +87,8 @@ class CubeDepthPass:
             msg = f"the cube pass draws passes='single' or 'six', not {passes!r} (planned?)"
             raise ValueError(msg)
         face_mask = int(np.bitwise_or.reduce(face_masks, initial=0))
+        #: The faces every caster touches: drawn with them all, no subset made.
+        every_face = int(np.bitwise_and.reduce(face_masks, initial=_ALL_FACES)) & face_mask
         projections = column_major(cube_face_projections(far * 1e-4, far))
         records: list[PassReport] = []
         chunk = 0 if casters.batch is None else casters.batch.chunk
@@ -117,12 +122,19 @@ class CubeDepthPass:
         with depth_only_state(self._window):
             cull = FaceCulling(self._window)
             for face in range(6):
-                drawn = casters.subset(face_masks & (1 << face) != 0)
+                bit = 1 << face
+                drawn = (
+                    casters
+                    if every_face & bit
+                    else casters.subset(face_masks & bit != 0)
+                    if face_mask & bit
+                    else None
+                )
                 record = PassReport(f"cube face {_FACE_NAMES[face]}", "run")
                 records.append(record)
                 with timer.measure(record):
                     _bind(cube, face, under, copy=face == 0)
-                    if not len(drawn):
+                    if drawn is None:
                         record.status = "skipped"
                         record.detail = "no caster in this face's frustum" + (
                             "" if under is None else ": it holds the still casters' depth"
