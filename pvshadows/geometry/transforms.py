@@ -228,7 +228,7 @@ def boxes_from_origin(boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nda
 
 
 def squared_lengths(rows: np.ndarray) -> np.ndarray:
-    """Return the squared length of each column of a ``(3, n)`` array.
+    """Return the squared length of each column of a ``(3, n)`` array (or a stack of them).
 
     numpy's norm without its checks. The sum is written out, x's and z's,
     then y's (the order numpy's ``einsum`` sums a row of three), so that
@@ -237,12 +237,12 @@ def squared_lengths(rows: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     rows : numpy.ndarray
-        ``(3, n)`` one coordinate per row (a transposed ``(n, 3)`` serves).
+        ``(..., 3, n)`` one coordinate per row (a transposed ``(n, 3)`` serves).
 
     Returns
     -------
     numpy.ndarray
-        ``(n,)`` the sums of the squares.
+        ``(..., n)`` the sums of the squares.
 
     Examples
     --------
@@ -251,7 +251,7 @@ def squared_lengths(rows: np.ndarray) -> np.ndarray:
     >>> squared_lengths(np.array([[3.0, 1], [4, 1], [0, 1]])).tolist()
     [25.0, 3.0]
     """
-    x, y, z = rows
+    x, y, z = rows.swapaxes(0, -2)  # a view: the coordinates first
     return (x * x + z * z) + y * y
 
 

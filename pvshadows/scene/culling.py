@@ -335,15 +335,16 @@ def box_corners_along(offsets: np.ndarray, rotation: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     offsets : numpy.ndarray
-        ``(2, 3, n)`` boxes' corners less a point, from :func:`box_offsets`.
+        ``(2, 3, n)`` boxes' corners less a point, from :func:`box_offsets`
+        (or ``(..., 2, 3, n)``: a stack, one per rotation).
     rotation : numpy.ndarray
-        ``(3, 3)`` rows: the new axes in world coordinates.
+        ``(3, 3)`` rows: the new axes in world coordinates (or ``(..., 3, 3)``).
 
     Returns
     -------
     numpy.ndarray
-        ``(3, 8, n)``: coordinate, corner (in :func:`box_corners`' order),
-        box.
+        ``(..., 3, 8, n)``: coordinate, corner (in :func:`box_corners`'
+        order), box.
 
     Examples
     --------
@@ -354,10 +355,13 @@ def box_corners_along(offsets: np.ndarray, rotation: np.ndarray) -> np.ndarray:
     >>> box_corners_along(offsets, swap)[:, 7, 0].tolist()
     [2.0, 1.0, 3.0]
     """
-    # terms[k, side, axis]: rotated coordinate k of the min or max corner's offset along an axis
-    terms = np.asarray(rotation)[:, None, :, None] * offsets[None]
-    x, y, z = terms[:, :, 0, None, None], terms[:, None, :, 1, None], terms[:, None, None, :, 2]
-    return (x + y + z).reshape(3, 8, -1)
+    # terms[..., k, side, axis]: rotated coordinate k of the min or max corner's offset
+    # along an axis
+    terms = np.asarray(rotation)[..., :, None, :, None] * offsets[..., None, :, :, :]
+    x = terms[..., :, :, 0, None, None, :]
+    y = terms[..., :, None, :, 1, None, :]
+    z = terms[..., :, None, None, :, 2, :]
+    return (x + y + z).reshape(*terms.shape[:-4], 3, 8, terms.shape[-1])
 
 
 @lru_cache(maxsize=256)
@@ -507,8 +511,8 @@ class SpotCones:
         #: ``(lights, 1)`` the cosine and sine of each cone's angle.
         self.cos = np.array([[s[2]] for s in sides])
         self.sin = np.array([[s[3]] for s in sides])
-        #: ``(lights, 3, 1)`` each light's direction and position.
-        self.directions = np.array([p.direction for p in poses])[:, :, None]
+        #: ``(lights, 1, 3)`` each light's direction, ``(lights, 3, 1)`` its position.
+        self.directions = np.array([p.direction for p in poses])[:, None, :]
         self.positions = np.array([p.position for p in poses])[:, :, None]
 
 
@@ -544,15 +548,19 @@ def boxes_in_spots(boxes: np.ndarray, cones: SpotCones) -> np.ndarray:
     [[True, False], [False, True]]
     """
     boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 2, 3)
-    # (lights, 3, boxes): the boxes' min and max corners less each light's position
+    # (lights, 3, boxes): the boxes' min and max corners less each light's position, as
+    # box_offsets lays them out for one
     corners = boxes.transpose(1, 2, 0)
     lo, hi = corners[0] - cones.positions, corners[1] - cones.positions
     holds_light = ((lo <= 0.0) & (hi >= 0.0)).all(axis=1)
+    # A box is behind a plane through the light when its corner farthest along the
+    # plane's normal is: the normal's positive parts meet ``hi``, its negative ones ``lo``.
     behind_a_plane = (cones.positive @ hi + cones.negative @ lo).min(axis=1) < 0.0
     center = 0.5 * (lo + hi)
-    radius = 0.5 * np.sqrt(((hi - lo) ** 2).sum(axis=1))
-    directions = cones.directions
-    along = (directions * center).sum(axis=1)
-    across = np.sqrt(((center - directions * along[:, None]) ** 2).sum(axis=1))
+    radius = 0.5 * np.sqrt(squared_lengths(hi - lo))
+    along = (cones.directions @ center)[:, 0]
+    aside = center - cones.directions.transpose(0, 2, 1) * along[:, None]
+    across = np.sqrt(squared_lengths(aside))
+    # Distance from the centre of the sphere around the box to the cone's surface.
     outside = across * cones.cos - along * cones.sin
     return holds_light | (~behind_a_plane & (outside <= radius))

@@ -186,8 +186,11 @@ def box_distances_squared(position: np.ndarray, boxes: np.ndarray) -> tuple[np.n
 
 
 def _distances_squared(offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Return :func:`box_distances_squared` of boxes less the point (:func:`box_offsets`)."""
-    lo, hi = offsets
+    """Return :func:`box_distances_squared` of boxes less the point (:func:`box_offsets`).
+
+    ``offsets`` may be a stack ``(..., 2, 3, n)``, one per light.
+    """
+    lo, hi = offsets.swapaxes(0, -3)  # a view: the sides first
     outside = np.maximum(np.maximum(lo, -hi), 0.0)
     corner = np.maximum(np.abs(lo), np.abs(hi))
     return squared_lengths(outside), squared_lengths(corner)
@@ -270,17 +273,9 @@ def cone_measures(pose: LightPose, boxes: np.ndarray) -> ConeMeasures:
         return ConeMeasures(
             *(np.array([value]) for value in _one_box_cone_measures(boxes[0], pose))
         )
-    offsets = box_offsets(boxes, pose.position)
-    near, far = _distances_squared(offsets)
-    x, y, z = box_corners_along(offsets, _spot_rotation(pose)[:3, :3])
-    depth = np.negative(z)
-    in_front = depth.min(axis=0) > 0.0
-    # a box with a corner beside or behind the light spreads without bound: divided by 1
-    # here (no warning), then marked infinite
-    depth[:, ~in_front] = 1.0
-    spread = (np.maximum(np.abs(x), np.abs(y)) / depth).max(axis=0)
-    spread[~in_front] = np.inf
-    return ConeMeasures(near, far, spread)
+    offsets = box_offsets(boxes, pose.position)[None]
+    measured = _stacked_measures(offsets, _spot_rotation(pose)[None, :3, :3])
+    return ConeMeasures(*(values[0] for values in measured))
 
 
 def cone_measures_many(poses: list[LightPose], boxes: np.ndarray) -> ConeMeasures:
@@ -316,29 +311,22 @@ def cone_measures_many(poses: list[LightPose], boxes: np.ndarray) -> ConeMeasure
     positions = np.array([pose.position for pose in poses])[:, None, :, None]
     # (lights, 2, 3, n): as box_offsets lays out each light's boxes, less its position
     offsets = boxes.transpose(0, 2, 3, 1) - positions
-    lo, hi = offsets[:, 0], offsets[:, 1]
-    outside = np.maximum(np.maximum(lo, -hi), 0.0)
-    corner = np.maximum(np.abs(lo), np.abs(hi))
-    near, far = (_lengths_squared(rows) for rows in (outside, corner))
     rotations = np.array([_spot_rotation(pose)[:3, :3] for pose in poses])
-    # box_corners_along with a first axis over the lights: each term, then their sum
-    terms = rotations[:, :, None, :, None] * offsets[:, None]
-    x = terms[:, :, :, 0, None, None]
-    y = terms[:, :, None, :, 1, None]
-    z = terms[:, :, None, None, :, 2]
-    along = (x + y + z).reshape(len(poses), 3, 8, -1)
-    depth = np.negative(along[:, 2])
-    in_front = depth.min(axis=1) > 0.0
-    depth = np.where(in_front[:, None], depth, 1.0)
-    spread = (np.maximum(np.abs(along[:, 0]), np.abs(along[:, 1])) / depth).max(axis=1)
+    return _stacked_measures(offsets, rotations)
+
+
+def _stacked_measures(offsets: np.ndarray, rotations: np.ndarray) -> ConeMeasures:
+    """Return :class:`ConeMeasures` of ``(lights, 2, 3, n)`` box offsets, each in its rotation."""
+    near, far = _distances_squared(offsets)
+    x, y, z = box_corners_along(offsets, rotations).swapaxes(0, -3)
+    depth = np.negative(z)
+    in_front = depth.min(axis=-2) > 0.0
+    # a box with a corner beside or behind the light spreads without bound: divided by 1
+    # here (no warning), then marked infinite
+    np.copyto(depth, 1.0, where=~in_front[..., None, :])
+    spread = (np.maximum(np.abs(x), np.abs(y)) / depth).max(axis=-2)
     spread[~in_front] = np.inf
     return ConeMeasures(near, far, spread)
-
-
-def _lengths_squared(rows: np.ndarray) -> np.ndarray:
-    """Return :func:`~pvshadows.geometry.transforms.squared_lengths` of ``(lights, 3, n)`` rows."""
-    x, y, z = rows[:, 0], rows[:, 1], rows[:, 2]
-    return (x * x + z * z) + y * y
 
 
 def spot_shadowing_rows(
