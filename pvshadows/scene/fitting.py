@@ -13,8 +13,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-import numpy as np
-
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.snapshot import Snapshot
 
@@ -25,27 +23,26 @@ MARGIN_TEXELS = 2
 UP_SWITCH = 0.99
 
 
-def up_for(direction: np.ndarray) -> np.ndarray:
+def up_for(direction: Sequence[float]) -> tuple[float, float, float]:
     """Return the up vector a map looking along ``direction`` is turned by.
 
     Parameters
     ----------
-    direction : numpy.ndarray
-        ``(3,)`` unit vector the map looks along.
+    direction : sequence of float
+        ``(3,)`` unit vector the map looks along (plain floats or a numpy array).
 
     Returns
     -------
-    numpy.ndarray
+    tuple of float
         World z, or world y when ``direction`` is within about 8 degrees of z.
 
     Examples
     --------
-    >>> import numpy as np
     >>> from pvshadows.scene.fitting import up_for
-    >>> up_for(np.array([0.0, 0.0, -1.0])).tolist()
-    [0.0, 1.0, 0.0]
+    >>> up_for((0.0, 0.0, -1.0))
+    (0.0, 1.0, 0.0)
     """
-    return np.array([0.0, 0.0, 1.0]) if abs(direction[2]) < UP_SWITCH else np.array([0.0, 1.0, 0.0])
+    return (0.0, 0.0, 1.0) if abs(direction[2]) < UP_SWITCH else (0.0, 1.0, 0.0)
 
 
 def flat_and_lit_above(state: ActorState, direction: Sequence[float], snapshot: Snapshot) -> bool:

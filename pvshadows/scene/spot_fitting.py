@@ -152,8 +152,7 @@ def _spot_rotation(pose: LightPose) -> np.ndarray:
 @lru_cache(maxsize=256)
 def _rotation_along(direction: tuple[float, float, float]) -> np.ndarray:
     """Return a spot map's rotation, worked out once per direction (read-only)."""
-    forward = np.array(direction)
-    rotation = look_rotation(forward, up_for(forward))
+    rotation = look_rotation(np.array(direction), up_for(direction))
     rotation.setflags(write=False)
     return rotation
 

@@ -16,10 +16,11 @@ import numpy as np
 from pvshadows.geometry.transforms import look_axes, translation
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.culling import widened_boxes
-from pvshadows.scene.fitting import MARGIN_TEXELS, UP_SWITCH, flat_and_lit_above
+from pvshadows.scene.fitting import MARGIN_TEXELS, flat_and_lit_above, up_for
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import Snapshot
 
+#: The last row of an affine matrix.
 _LAST_ROW = (0.0, 0.0, 0.0, 1.0)
 #: Sizes of the sun's map are rounded up to steps of 2 ** (1 / SIZE_STEPS_PER_OCTAVE).
 SIZE_STEPS_PER_OCTAVE = 8
@@ -172,8 +173,7 @@ def sun_rotation(pose: LightPose) -> np.ndarray:
     [0.0, 0.0, -1.0]
     """
     direction = pose.direction.tolist()
-    hint = (0.0, 0.0, 1.0) if abs(direction[2]) < UP_SWITCH else (0.0, 1.0, 0.0)
-    (rx, ry, rz), up, (bx, by, bz) = look_axes(direction, hint)
+    (rx, ry, rz), up, (bx, by, bz) = look_axes(direction, up_for(direction))
     # The camera's x and z turned round (the zeros' signs too, as a negated row has them).
     return np.array([[-rx, -ry, -rz, -0.0], [*up, 0.0], [-bx, -by, -bz, -0.0], _LAST_ROW])
 

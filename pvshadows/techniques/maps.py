@@ -12,7 +12,7 @@ casters; translucent ones go to its transmittance companion
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -62,6 +62,8 @@ class MapState(LightState):
     """The map kept for one light between frames, and the light space it was drawn in."""
 
     depth: DepthMap
+    #: A spot light's casters measured from it (shared with its kind: ``MeasureGroup``).
+    measures: CasterMeasureCache[ConeMeasures]
     key: tuple | None = None
     frame: int = -1
     drawn: bool = False
@@ -80,9 +82,6 @@ class MapState(LightState):
     #: (:attr:`pvshadows.scene.measures.Measured.base`).
     fitted_about: LightPose | None = None
     texel: float = 1.0
-    measures: CasterMeasureCache[ConeMeasures] = field(
-        default_factory=lambda: CasterMeasureCache(cone_measures, turns=True)
-    )
     sun_actors: tuple | None = None
     fit_key: tuple | None = None
     fitted: SunFit | None = None
