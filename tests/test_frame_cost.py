@@ -808,3 +808,54 @@ def test_a_sun_turning_a_little_reads_its_actors_once_and_keeps_its_shadows_righ
     # read once, widened, at the first move; the later moves stay within the slack
     assert read[0].slack > 0 and all(each is read[0] for each in read)
     assert max(errors) <= 0.002
+
+
+def lit_twice():
+    """The standard scene under a spot light (a 2D map) and a point light (a cube)."""
+    scene = standard_scene(window_size=(200, 150), light="spot")
+    bulb = pv.Light(position=(-2, 1, 4), focal_point=(-2, 1, 3), positional=True, cone_angle=180)
+    scene.plotter.add_light(bulb)
+    scene.plotter.shadows.enable(filter="hard")
+    draw(scene.plotter)
+    draw(scene.plotter)
+    return scene.plotter
+
+
+def test_a_camera_frame_takes_each_still_light_again_and_fills_the_block_as_afresh():
+    pl = lit_twice()
+    shadows = pl.shadows._renderers[0]
+    kept = shadows.lights_kept
+    for _ in range(3):
+        pl.camera.Azimuth(10)
+        taken_again = draw(pl)
+    # neither light is brought up again: its map, shading and textures are last frame's,
+    # and its entry's view-to-light matrix is made for the new camera
+    assert shadows.lights_kept - kept == 6
+    assert pl.shadows.last_frame.passes_run == 0
+    block = shadows._block.floats
+    shadows.memo.forget()  # new casts: both lights are brought up to date in full
+    afresh = draw(pl)
+    assert shadows.lights_kept - kept == 6
+    assert shadows._block.floats.tobytes() == block.tobytes()
+    assert np.array_equal(afresh, taken_again)
+
+
+def test_a_frame_in_which_nothing_changed_packs_and_sends_no_light_again():
+    pl = lit_twice()
+    shadows = pl.shadows._renderers[0]
+    before = counters(pl)
+    kept = shadows.lights_kept
+    draw(pl)
+    assert shadows.lights_kept - kept == 2
+    assert change(before, counters(pl))["block uploads"] == 0
+
+
+def test_a_moved_spot_light_is_brought_up_to_date_and_the_other_light_taken_again():
+    pl = lit_twice()
+    shadows = pl.shadows._renderers[0]
+    kept = shadows.lights_kept
+    spot = next(light for light in pl.renderer.lights if light.cone_angle < 90)
+    spot.position = np.add(spot.position, (0.3, 0.0, 0.0))
+    draw(pl)
+    assert shadows.lights_kept - kept == 1
+    assert [light.passes[0].status for light in pl.shadows.last_frame.lights] == ["run", "reused"]

@@ -79,6 +79,41 @@ class LightEntry:
     light_to_clip: np.ndarray | None = None
     light_vc: tuple = _NO_VECTOR
 
+    def seen_from(self, view_to_light: np.ndarray) -> LightEntry:
+        """Return a copy of the entry with another view-to-light matrix (the camera moved).
+
+        Parameters
+        ----------
+        view_to_light : numpy.ndarray
+            ``(4, 4)``: this frame's view coordinates to the light's space.
+
+        Returns
+        -------
+        LightEntry
+            The copy; this entry is left as it was.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from pvshadows.gl.frame_block import LightEntry
+        >>> entry = LightEntry(0.5, params=(2.0, 0.1, 0.0, 0.0))
+        >>> moved = entry.seen_from(2.0 * np.eye(4))
+        >>> moved.view_to_light[0, 0], moved.params, entry.view_to_light
+        (np.float64(2.0), (2.0, 0.1, 0.0, 0.0), None)
+        """
+        return LightEntry(
+            self.strength,
+            view_to_light,
+            self.params,
+            self.cone,
+            self.bias,
+            self.filter_radius,
+            self.taps,
+            self.layer,
+            self.light_to_clip,
+            self.light_vc,
+        )
+
     def floats(self) -> list[float]:
         """Return the entry's floats as GLSL reads them (matrices by columns: transposed).
 
@@ -153,8 +188,8 @@ class FrameBlock:
         self._data = bytearray()
         self._view = (ctypes.c_char * 0).from_buffer(self._data)
         self._pointer = ctypes.c_void_p(0)
-        #: The entries filled last frame (a light gone since is zeroed).
-        self._written: set[int] = set()
+        #: The entries packed last frame by light index (a light gone since is zeroed).
+        self._packed: dict[int, LightEntry] = {}
         self._sent = b""
         self.uploads = 0
 
@@ -173,7 +208,9 @@ class FrameBlock:
 
         The buffer holds at least 8 entries, and twice the entries asked for
         whenever more are: never fewer than any receiver's block declares.
-        Only a block that differs from the last one sent is uploaded.
+        Only a block that differs from the last one sent is uploaded, and an
+        entry handed again (the same object as last time, for the same light)
+        is not packed again: an entry is not changed once handed over.
 
         Parameters
         ----------
@@ -207,14 +244,16 @@ class FrameBlock:
             # cannot be resized), and the pointer is read once, not a ctypes view per read.
             self._view = (ctypes.c_char * size).from_buffer(data)
             self._pointer = ctypes.c_void_p(ctypes.addressof(self._view))
-            self._written = set()
+            self._packed = {}
         _HEADER.pack_into(data, 0, probe, 0, *viewport)
         offset, step = HEADER_FLOATS * 4, _ENTRY.size
-        for index in self._written.difference(entries):
+        packed = self._packed
+        for index in packed.keys() - entries.keys():
             data[offset + index * step : offset + (index + 1) * step] = _EMPTY_ENTRY
-        self._written = set(entries)
         for index, entry in entries.items():
-            _ENTRY.pack_into(data, offset + index * step, *entry.floats())
+            if packed.get(index) is not entry:
+                _ENTRY.pack_into(data, offset + index * step, *entry.floats())
+        self._packed = dict(entries)
         # Binding to the indexed point binds the buffer to GL_UNIFORM_BUFFER too, where
         # glBufferData reads it.
         self._bind_base(_UNIFORM_BUFFER, BINDING, self._buffer)

@@ -24,7 +24,7 @@ from pvshadows.gl.frame_block import FrameBlock, LightEntry
 from pvshadows.gl.sampler_units import SamplerUnits
 from pvshadows.gl.texture_units import park_active_unit
 from pvshadows.gl.timing import PassTimer
-from pvshadows.model.plan import LightPlan
+from pvshadows.model.plan import Cast, LightPlan
 from pvshadows.model.report import FrameFailure, FrameReport, LightReport
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.planner import PlanMemo, plan_frame
@@ -37,7 +37,7 @@ from pvshadows.scene.view import FrameView
 from pvshadows.shaders.edits import ReceiverEdits
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques import TECHNIQUE_CLASSES
-from pvshadows.techniques.base import FrameContext, Technique
+from pvshadows.techniques.base import FrameContext, LightFrame, Technique
 from pvshadows.techniques.volume import VolumeTechnique
 
 
@@ -97,6 +97,11 @@ class RendererShadows:
         #: Let techniques draw debug overlays (``draw_debug``) over the finished frame.
         self.show_debug = False
         self._context: FrameContext | None = None
+        #: Each shadowed light's cast, camera and :class:`LightFrame` of the last frame, by
+        #: VTK light index: a light whose technique says they hold is not brought up again.
+        self._kept: dict[int, tuple[Cast, FrameView, LightFrame]] = {}
+        #: Lights whose last frame's :class:`LightFrame` was taken again, over all frames.
+        self.lights_kept = 0
 
     def technique(self, name: str) -> Technique:
         """Return the object running technique ``name`` in this renderer.
@@ -133,6 +138,7 @@ class RendererShadows:
         self._block = FrameBlock(window)
         self._units = self._edits.units = SamplerUnits(window)
         self._techniques = {}
+        self._kept = {}
 
     def _extrudes_on_gpu(self) -> bool:
         volume = self.technique("volume")
@@ -188,6 +194,7 @@ class RendererShadows:
         shadings = []
         light_space: list[LightShading] = []
         self._active = []
+        kept, self._kept = self._kept, {}
         for plan in plans:
             light_report = LightReport(
                 plan.index, plan.kind.value, plan.technique, notes=plan.notes
@@ -198,18 +205,16 @@ class RendererShadows:
                 continue
             self._where = plan
             technique = self.technique(cast.technique)
-            light_report.passes = technique.update(cast, context)
-            shading = technique.shading(cast)
-            shadings.append(shading)
-            entry = entries[cast.vtk_index] = LightEntry(cast.settings.strength)
-            for lookup in shading.needs:
-                if lookup.vtk_index == cast.vtk_index:
-                    entry.taps = lookup.taps
+            lit = self._light_frame(technique, cast, context, kept.get(cast.vtk_index))
+            self._kept[cast.vtk_index] = (cast, view, lit)
+            light_report.passes = lit.passes
+            shadings.append(lit.shading)
+            entries[cast.vtk_index] = lit.entry
             if cast.technique in LIGHT_SPACE_TECHNIQUES:
-                light_space.append(shading)
+                light_space.append(lit.shading)
             if technique not in self._active:
                 self._active.append(technique)
-            uniforms.update(technique.activate(cast, context, entry))
+            uniforms.update(lit.samplers)
         self._note_impostors(plans, snapshot)
         for light_report, plan in zip(report.lights, plans, strict=True):
             light_report.notes = list(plan.notes)
@@ -227,6 +232,28 @@ class RendererShadows:
         self._units.bind(uniforms)
         park_active_unit(self._window)
         self.plans, self.snapshot, self.last_frame = plans, snapshot, report
+
+    def _light_frame(
+        self,
+        technique: Technique,
+        cast: Cast,
+        context: FrameContext,
+        kept: tuple[Cast, FrameView, LightFrame] | None,
+    ) -> LightFrame:
+        """Bring one light up to date, or take last frame's if its technique says it holds."""
+        if kept is not None and kept[0] is cast:
+            lit = technique.again(cast, context, kept[2], kept[1] is context.view)
+            if lit is not None:
+                self.lights_kept += 1
+                return lit
+        passes = technique.update(cast, context)
+        shading = technique.shading(cast)
+        entry = LightEntry(cast.settings.strength)
+        for lookup in shading.needs:
+            if lookup.vtk_index == cast.vtk_index:
+                entry.taps = lookup.taps
+        samplers = technique.activate(cast, context, entry)
+        return LightFrame(passes, shading, entry, samplers)
 
     @staticmethod
     def _viewport(
@@ -301,6 +328,7 @@ class RendererShadows:
         self.memo.forget()
         self._active = []
         self._techniques = {}
+        self._kept = {}
         self._context = None
         return troubles
 

@@ -64,6 +64,29 @@ class FrameContext:
         return render_target(self.renderer)
 
 
+@dataclass(slots=True)
+class LightFrame:
+    """What a technique gave one light in one frame, kept for the next.
+
+    Attributes
+    ----------
+    passes : list of PassReport
+        The passes run, reused or skipped.
+    shading : LightShading
+        How receivers read the light's shadow data.
+    entry : LightEntry
+        The light's entry of the frame's uniform block; not changed once
+        handed to the block.
+    samplers : dict
+        The receivers' textures by uniform name.
+    """
+
+    passes: list[PassReport]
+    shading: LightShading
+    entry: LightEntry
+    samplers: dict[str, object]
+
+
 class Releasable(Protocol):
     """Something holding GPU resources: a pass's programs, a map's texture."""
 
@@ -91,6 +114,19 @@ class Technique(Protocol[CastT]):
 
     def activate(self, plan: CastT, context: FrameContext, entry: LightEntry) -> dict[str, object]:
         """Fill the light's entry of the frame's block; return the receivers' textures by name."""
+
+    def again(
+        self, plan: CastT, context: FrameContext, last: LightFrame, same_view: bool
+    ) -> LightFrame | None:
+        """Return last frame's :class:`LightFrame` of a light for this frame, if it still holds.
+
+        It holds when the light's cast is last frame's (``plan`` is the
+        cast ``last`` was made for) and its shadow data, shading and
+        textures are as they were then: the entry is then last frame's, its
+        view-to-light matrix made for this frame's camera unless
+        ``same_view``. ``None`` asks the frame to run :meth:`update`,
+        :meth:`shading` and :meth:`activate`.
+        """
 
     def end_frame(self) -> None:
         """Let go of what only this frame needed, once its receivers drew."""

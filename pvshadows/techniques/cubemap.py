@@ -40,7 +40,7 @@ from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.measures import CasterMeasureCache
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
-from pvshadows.techniques.base import FrameContext
+from pvshadows.techniques.base import FrameContext, LightFrame
 from pvshadows.techniques.per_light import LightState, PerLightMaps
 from pvshadows.techniques.still_casters import StillCasters
 from pvshadows.techniques.translucent import (
@@ -76,6 +76,9 @@ class CubeState(LightState):
         default_factory=lambda: CasterMeasureCache(cube_measures)
     )
     still: StillCasters[DepthCube] | None = None
+    #: The cube arrays' allocations when its textures were last bound
+    #: (:meth:`CubemapTechnique.activate`); -1 before.
+    bound_after: int = -1
 
     def release_map(self) -> None:
         """Release the cube."""
@@ -114,6 +117,11 @@ def distance_range(near: np.ndarray, far: np.ndarray) -> tuple[float, float]:
     # squared lengths compared, one square root each: the same order, fewer calls
     nearest, farthest = math.sqrt(float(near.min())), math.sqrt(float(far.max()))
     return nearest, max(farthest * 1.01, SMALLEST_FAR)
+
+
+def _reused(state: CubeState) -> list[PassReport]:
+    reused = f"light and casters unchanged since frame {state.frame}: map still right"
+    return [PassReport("cube depth", "reused", reused)]
 
 
 class CubeMeasures(NamedTuple):
@@ -236,9 +244,8 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             state = CubeState(self._new_cube(resolution, context, own))
             state.still = self._still_casters(lambda: DepthCube(self._window, resolution))
             self._states[plan.key] = state
-        if state.planned is plan and state.key is not None and state.companion is None:
-            reused = f"light and casters unchanged since frame {state.frame}: map still right"
-            return [PassReport("cube depth", "reused", reused)]
+        if self._still_right(state, plan):
+            return _reused(state)
         state.planned = None
         position, snapshot = plan.pose.position, context.snapshot
         measures = state.measures.of(plan.pose, snapshot).values
@@ -261,8 +268,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         )
         if key == state.key:
             state.planned = plan
-            reused = f"light and casters unchanged since frame {state.frame}: map still right"
-            return [PassReport("cube depth", "reused", reused), *companion]
+            return [*_reused(state), *companion]
         assert self._pass is not None
         reports = []
         steps = self._drawn_steps(
@@ -355,6 +361,44 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             translucent=state.companion is not None,
         )
 
+    def again(
+        self, plan: Cast, context: FrameContext, last: LightFrame, same_view: bool
+    ) -> LightFrame | None:
+        """Return a light's last :class:`LightFrame`, seen from this frame's camera.
+
+        A cube holds while its cast is the one it was drawn for, and its
+        textures while no cube array grew since they were bound; only the
+        view-to-light matrix follows the camera.
+
+        Parameters
+        ----------
+        plan : Cast
+            The light's cast, the one ``last`` was made for.
+        context : FrameContext
+            This frame's camera.
+        last : LightFrame
+            What the light was given last frame.
+        same_view : bool
+            Whether the camera is last frame's.
+
+        Returns
+        -------
+        LightFrame or None
+            The reused pass, last frame's shading and textures, and its entry;
+            ``None`` when the cube or its textures must be brought up to date.
+        """
+        state = self._states.get(plan.key)
+        if not self._still_right(state, plan):
+            return None
+        assert state is not None  # a cube still right is kept
+        if state.bound_after != self._allocations_now():
+            return None
+        self._array_bindings(plan, context)  # no array grew: it rebinds nothing, notes the light
+        entry = last.entry
+        if not same_view:
+            entry = entry.seen_from(context.view.to_frame_at(plan.pose.position))
+        return LightFrame(_reused(state), last.shading, entry, last.samplers)
+
     def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
         """Fill the light's block entry (its matrix and parameters); return its textures.
 
@@ -380,6 +424,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         spot = pose.kind is LightKind.SPOT
         cone = math.cos(math.radians(pose.cone_angle)) if spot else -2.0
         uniforms = self._array_bindings(plan, context)
+        state.bound_after = self._allocations
         drawn = state.cube if state.drawn else None
         uniforms.update(self._filters.activate(i, settings, drawn, entry))
         if state.companion is not None:
@@ -400,7 +445,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         """
         if context.frame != self._frame:
             self._frame, self._activated = context.frame, []
-        allocations = sum(a.allocations for a in self.arrays.values()) if self.arrays else 0
+        allocations = self._allocations_now()
         uniforms: dict[str, object] = {}
         if allocations != self._allocations:
             for earlier in self._activated:
@@ -412,6 +457,10 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         self._allocations = allocations
         self._activated.append(plan)
         return uniforms
+
+    def _allocations_now(self) -> int:
+        """Return how many times the cube arrays were allocated, growing included."""
+        return sum(a.allocations for a in self.arrays.values()) if self.arrays else 0
 
     def end_frame(self) -> None:
         """Delete the arrays grown out of this frame."""

@@ -29,12 +29,19 @@ from pvshadows.techniques.translucent import Companion
 class LightState(ABC):
     """What a technique keeps for one light between frames: its map and the map's companion.
 
-    A subclass (a dataclass) holds ``companion`` and ``still`` as fields,
-    default ``None``, and says in :meth:`release_map` how its map is released.
+    A subclass (a dataclass) holds ``companion``, ``still``, ``planned``
+    and ``key`` as fields, default ``None``, and ``frame``, and says in
+    :meth:`release_map` how its map is released.
     """
 
     #: The transmittance companion of its map, when some of its casters are translucent.
     companion: Companion | None
+    #: The cast the map was last brought up to date for.
+    planned: Cast | None
+    #: What the map was last drawn from (``None`` when it holds nothing to read).
+    key: tuple | None
+    #: The frame it was last drawn in.
+    frame: int
     #: Which casters a redraw draws over a still map (``None`` where maps cannot be copied).
     still: StillCasters | None
 
@@ -183,6 +190,22 @@ class PerLightMaps(Generic[StateT, PassT]):
             )
             self._shadings[key] = shading
         return shading
+
+    @staticmethod
+    def _still_right(state: LightState | None, plan: Cast) -> bool:
+        """Whether a light's map was last brought up to date for this very cast and holds casters.
+
+        The planner hands the same cast again only while the light, its
+        casters and what they are drawn from are as they were, so the map,
+        drawn then, is right still. A map with a transmittance companion is
+        brought up to date again: the companion keeps its own key.
+        """
+        return (
+            state is not None
+            and state.planned is plan
+            and state.key is not None
+            and state.companion is None
+        )
 
     def companion_of(self, light: vtk.vtkLight) -> TransmittanceTexture | None:
         """Return the transmittance companion kept for a light, if any (for tests and debugging)."""

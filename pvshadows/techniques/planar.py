@@ -44,7 +44,7 @@ from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.planes import PlaneChoice, facing, flattening
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
-from pvshadows.techniques.base import FrameContext
+from pvshadows.techniques.base import FrameContext, LightFrame
 from pvshadows.techniques.screen_mask import facing_shading, mask_shading, mask_uniforms
 
 _PASS = "planar mask"
@@ -327,6 +327,12 @@ class PlanarTechnique:
         return mask_shading(
             plan.vtk_index, only_on=frozenset({state.plane_actor}), elsewhere=facing_only
         )
+
+    def again(
+        self, plan: Cast, context: FrameContext, last: LightFrame, same_view: bool
+    ) -> LightFrame | None:
+        """Return ``None``: the light's mask of flattened casters is drawn for every frame."""
+        return None
 
     def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
         """Fill the light's block entry (the facing test's light); return its mask's texture.

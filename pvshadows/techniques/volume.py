@@ -55,7 +55,7 @@ from pvshadows.scene.actor_state import ActorState, hides_what_is_behind
 from pvshadows.scene.render_target import tiled_viewport
 from pvshadows.scene.triangles import ActorTriangles, vtk_id
 from pvshadows.shaders.shading import LightShading
-from pvshadows.techniques.base import FrameContext
+from pvshadows.techniques.base import FrameContext, LightFrame
 from pvshadows.techniques.screen_mask import mask_shading, mask_uniforms
 from pvshadows.techniques.volume_fallback import Fallback, OpenCasterFallbacks, combine_shadings
 from pvshadows.techniques.volume_light import (
@@ -412,6 +412,12 @@ class VolumeTechnique:
             return own
         name, subplan = state.fallback
         return combine_shadings(own, self._fallbacks.technique(name).shading(subplan))
+
+    def again(
+        self, plan: Cast, context: FrameContext, last: LightFrame, same_view: bool
+    ) -> LightFrame | None:
+        """Return ``None``: the light's screen mask (a stencil count) is drawn for every frame."""
+        return None
 
     def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
         """Fill the light's block entry (facing test, a fallback's map); return its textures.
