@@ -171,8 +171,9 @@ class ReceiverEdits:
             and lit_points == self._lit_points
             and not flagged
         )
+        values_kept = _same_values(uniforms, self._given)
         if same:
-            if not _same_values(uniforms, self._given):
+            if not values_kept:
                 self._send_changed(uniforms)
                 self._given = dict(uniforms)
             return
@@ -188,7 +189,7 @@ class ReceiverEdits:
             and previous is not None
             and snapshot.parent is previous
             and snapshot.bystanders is previous.bystanders
-            and self._update_replaced(snapshot, shadings, uniforms)
+            and self._update_replaced(snapshot, shadings, uniforms, values_kept)
         ):
             return
         fresh: dict[tuple, dict[str, object]] = {}
@@ -235,13 +236,18 @@ class ReceiverEdits:
             self.units.keep_marked()
 
     def _update_replaced(
-        self, snapshot: Snapshot, shadings: list[LightShading], uniforms: dict[str, object]
+        self,
+        snapshot: Snapshot,
+        shadings: list[LightShading],
+        uniforms: dict[str, object],
+        values_kept: bool,
     ) -> bool:
         """Bring only the receivers replaced since the last snapshot up to date.
 
         Every other receiver keeps its edits and takes the changed values by
-        kind. Returns ``False``, before touching that receiver, when one of
-        them would change kind (then the whole frame's path runs).
+        kind (none when ``values_kept``: the uniforms are last frame's).
+        Returns ``False``, before touching that receiver, when one of them
+        would change kind (then the whole frame's path runs).
         """
         fresh: dict[tuple, dict[str, object]] = {}
         for row in snapshot.replaced:
@@ -253,12 +259,36 @@ class ReceiverEdits:
             pbr = state.actor.GetProperty().GetInterpolation() == vtk.VTK_PBR
             if self._signature_of.get(key) != (True, *_signature(pbr, lights)):
                 return False
+            if self._moved_only(key, state):
+                # its edits and its place among its kind's receivers are as they were
+                self._states[key] = state
+                continue
             self._receive(state.actor, key, state, lights, True, set(), uniforms, fresh)
-        for signature, targets in self._members.items():
-            fresh[signature] = self._send_to(signature, targets, uniforms, fresh.get(signature))
-        self._sent.update(fresh)
+        if fresh or not values_kept:
+            for signature, targets in self._members.items():
+                fresh[signature] = self._send_to(signature, targets, uniforms, fresh.get(signature))
+            self._sent.update(fresh)
         self._snapshot = snapshot
         return True
+
+    def _moved_only(self, key: str, state: ActorState) -> bool:
+        """Whether a receiver differs from the state its edits were made for only in its place.
+
+        Its edits follow its kind (its signature) alone, so an actor that
+        moved, its triangles and style as they were, keeps them; one whose
+        edits wait for a program to check is brought up to date in full (the
+        wait follows its bounds).
+        """
+        before = self._states.get(key)
+        edits = self._edits.get(key)
+        return (
+            isinstance(before, ActorState)
+            and before.actor is state.actor
+            and before.triangles is state.triangles
+            and before.faces_drawn == state.faces_drawn
+            and edits is not None
+            and edits.check.attached
+        )
 
     def _receive(
         self,
