@@ -861,3 +861,20 @@ def test_a_moved_spot_light_is_brought_up_to_date_and_the_other_light_taken_agai
     draw(pl)
     assert shadows.lights_kept - kept == 1
     assert [light.passes[0].status for light in pl.shadows.last_frame.lights] == ["run", "reused"]
+
+
+def test_a_lights_pose_is_read_from_vtk_only_when_its_pose_time_moved():
+    pl = lit_twice()
+    memo = pl.shadows._renderers[0].memo
+    read = memo.poses_read
+    sphere = pl.renderer.actors["sphere"]
+    for _ in range(3):
+        sphere.AddPosition(0.01, 0.0, 0.0)
+        pl.camera.Azimuth(5)
+        draw(pl)
+    assert memo.poses_read == read
+    spot = next(light for light in pl.renderer.lights if light.cone_angle < 90)
+    spot.position = np.add(spot.position, (0.3, 0.0, 0.0))
+    draw(pl)
+    assert memo.poses_read == read + 1
+    assert pl.shadows.measure(spot).misclassified <= 0.005

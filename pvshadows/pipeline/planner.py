@@ -112,12 +112,17 @@ class PlanMemo:
         Frames that planned some light again.
     planned : int
         Lights planned again, over all frames.
+    poses_read : int
+        Light poses read from VTK, over all frames (a light's pose is read
+        again only when its pose time moved).
     """
 
     def __init__(self) -> None:
         self.kept = 0
         self.made = 0
         self.planned = 0
+        self.poses_read = 0
+        self._poses: dict[int, tuple[vtk.vtkLight, int, LightPose]] = {}
         self._tested = 0
         self._witnesses: dict[int, int] = {}
         self._plans: dict[int, tuple[tuple, LightPlan, int, ViewUse, object]] = {}
@@ -126,7 +131,36 @@ class PlanMemo:
     def forget(self) -> None:
         """Plan every light again next frame."""
         self._plans = {}
+        self._poses = {}
         self._in_view = None
+
+    def pose(self, light: vtk.vtkLight, time: int) -> LightPose:
+        """Return a light's pose (:func:`light_pose`), read again only when ``time`` moved.
+
+        Parameters
+        ----------
+        light : vtk.vtkLight
+            The light.
+        time : int
+            Its :func:`pvshadows.scene.lights.pose_time` this frame.
+
+        Returns
+        -------
+        LightPose
+            The pose read at that pose time.
+
+        Raises
+        ------
+        ValueError
+            As :func:`light_pose` does; such a pose is not kept.
+        """
+        kept = self._poses.get(id(light))
+        if kept is not None and kept[0] is light and kept[1] == time:
+            return kept[2]
+        pose = light_pose(light)
+        self.poses_read += 1
+        self._poses[id(light)] = (light, time, pose)
+        return pose
 
     @property
     def view_tests(self) -> int:
@@ -158,7 +192,7 @@ class PlanMemo:
         inputs: tuple,
         in_view: ViewSight,
         reach: ReachCache | None = None,
-        pose_of: Callable[[vtk.vtkLight], LightPose] = light_pose,
+        pose_of: Callable[[vtk.vtkLight, int], LightPose] | None = None,
     ) -> LightPlan | None:
         """Return a light's last plan if it was made from the same inputs, else ``None``.
 
@@ -171,7 +205,7 @@ class PlanMemo:
         exactly which receivers the camera sees nor choose a receiving
         plane. The plan comes back with the planner's notes only: what
         techniques and the frame added to them last frame is said again
-        this frame. ``pose_of`` reads a light's pose (the frame's reader
+        this frame. ``pose_of`` reads a light's pose given its pose time (the frame's reader
         reads each light once).
         """
         kept = self._plans.get(id(inputs[0]))
@@ -198,13 +232,15 @@ class PlanMemo:
         alive = {id(plan.light) for plan in plans}
         for key in set(self._plans) - alive:
             del self._plans[key]
+        for key in set(self._poses) - alive:
+            del self._poses[key]
 
 
 def _moved_out_of_reach(
     kept: tuple,
     inputs: tuple,
     reach: ReachCache,
-    pose_of: Callable[[vtk.vtkLight], LightPose],
+    pose_of: Callable[[vtk.vtkLight, int], LightPose] | None,
 ) -> bool:
     """Whether only actors out of the light's reach moved since its kept plan was made."""
     (light, time, settings, index, vtk_index, before), plan, use = kept[0], kept[1], kept[3]
@@ -218,7 +254,7 @@ def _moved_out_of_reach(
     ):
         return False
     try:
-        pose = pose_of(light)
+        pose = light_pose(light) if pose_of is None else pose_of(light, time)
     except ValueError:
         return False
     return not reach.touches(plan.key, pose, now)
@@ -310,7 +346,7 @@ def plan_frame(
     reach = ReachCache() if reach is None else reach
     warned = set() if warned is None else warned
     gpu = extrude_on_gpu if extrude_on_gpu is not None else lambda: True
-    shared = _Shared(snapshot, in_view)
+    shared = _Shared(snapshot, in_view, memo)
     planned = 0
     for index, light in enumerate(lights):
         inputs = (light, pose_time(light), settings_for(light), index, vtk_index, snapshot)
@@ -339,16 +375,21 @@ def plan_frame(
 class _Shared:
     """What the lights planned in one frame share, worked out once when first asked."""
 
-    def __init__(self, snapshot: Snapshot, in_view: ViewSight) -> None:
+    def __init__(self, snapshot: Snapshot, in_view: ViewSight, memo: PlanMemo | None) -> None:
         self.snapshot = snapshot
         self.in_view = in_view
+        self._memo = memo
         self._poses: dict[int, LightPose] = {}
 
-    def pose(self, light: vtk.vtkLight) -> LightPose:
-        """Return the light's pose (:func:`light_pose`), read once this frame."""
+    def pose(self, light: vtk.vtkLight, time: int) -> LightPose:
+        """Return the light's pose (:func:`light_pose`) at its pose time, read once this frame.
+
+        The memo's pose of the light stands while its pose time is the one given.
+        """
         key = id(light)
         if key not in self._poses:
-            self._poses[key] = light_pose(light)
+            memo = self._memo
+            self._poses[key] = light_pose(light) if memo is None else memo.pose(light, time)
         return self._poses[key]
 
     @cached_property
@@ -400,7 +441,7 @@ def _plan_light(
         )
         return plan, None
     try:
-        pose = shared.pose(light)
+        pose = shared.pose(light, inputs[1])
     except ValueError as error:
         plan.notes.append(f"casts nothing: {error}")
         return plan, None
