@@ -40,7 +40,7 @@ from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.measures import CasterMeasureCache
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
-from pvshadows.techniques.base import FrameContext, LightFrame
+from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.per_light import LightState, PerLightMaps
 from pvshadows.techniques.still_casters import StillCasters
 from pvshadows.techniques.translucent import (
@@ -117,11 +117,6 @@ def distance_range(near: np.ndarray, far: np.ndarray) -> tuple[float, float]:
     # squared lengths compared, one square root each: the same order, fewer calls
     nearest, farthest = math.sqrt(float(near.min())), math.sqrt(float(far.max()))
     return nearest, max(farthest * 1.01, SMALLEST_FAR)
-
-
-def _reused(state: CubeState) -> list[PassReport]:
-    reused = f"light and casters unchanged since frame {state.frame}: map still right"
-    return [PassReport("cube depth", "reused", reused)]
 
 
 class CubeMeasures(NamedTuple):
@@ -245,7 +240,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             state.still = self._still_casters(lambda: DepthCube(self._window, resolution))
             self._states[plan.key] = state
         if self._still_right(state, plan):
-            return _reused(state)
+            return self._reused(state)
         state.planned = None
         position, snapshot = plan.pose.position, context.snapshot
         measures = state.measures.of(plan.pose, snapshot).values
@@ -268,7 +263,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         )
         if key == state.key:
             state.planned = plan
-            return [*_reused(state), *companion]
+            return [*self._reused(state), *companion]
         assert self._pass is not None
         reports = []
         steps = self._drawn_steps(
@@ -361,43 +356,19 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             translucent=state.companion is not None,
         )
 
-    def again(
-        self, plan: Cast, context: FrameContext, last: LightFrame, same_view: bool
-    ) -> LightFrame | None:
-        """Return a light's last :class:`LightFrame`, seen from this frame's camera.
+    def _reused(self, state: CubeState) -> list[PassReport]:
+        reused = f"light and casters unchanged since frame {state.frame}: map still right"
+        return [PassReport("cube depth", "reused", reused)]
 
-        A cube holds while its cast is the one it was drawn for, and its
-        textures while no cube array grew since they were bound; only the
-        view-to-light matrix follows the camera.
+    def _view_to_light(self, state: CubeState, plan: Cast, context: FrameContext) -> np.ndarray:
+        return context.view.to_frame_at(plan.pose.position)
 
-        Parameters
-        ----------
-        plan : Cast
-            The light's cast, the one ``last`` was made for.
-        context : FrameContext
-            This frame's camera.
-        last : LightFrame
-            What the light was given last frame.
-        same_view : bool
-            Whether the camera is last frame's.
-
-        Returns
-        -------
-        LightFrame or None
-            The reused pass, last frame's shading and textures, and its entry;
-            ``None`` when the cube or its textures must be brought up to date.
-        """
-        state = self._states.get(plan.key)
-        if not self._still_right(state, plan):
-            return None
-        assert state is not None  # a cube still right is kept
+    def _holds_again(self, state: CubeState, plan: Cast, context: FrameContext) -> bool:
+        """Whether no cube array grew since the light's textures were bound (it is noted bound)."""
         if state.bound_after != self._allocations_now():
-            return None
-        self._array_bindings(plan, context)  # no array grew: it rebinds nothing, notes the light
-        entry = last.entry
-        if not same_view:
-            entry = entry.seen_from(context.view.to_frame_at(plan.pose.position))
-        return LightFrame(_reused(state), last.shading, entry, last.samplers)
+            return False
+        self._array_bindings(plan, context)  # no array grew: it rebinds nothing
+        return True
 
     def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
         """Fill the light's block entry (its matrix and parameters); return its textures.
@@ -431,7 +402,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             uniforms.update(self._filters.activate_transmittance(i, state.companion.texture))
         if isinstance(state.cube, CubeSlot):
             entry.layer = float(state.cube.slot)
-        entry.view_to_light = context.view.to_frame_at(pose.position)
+        entry.view_to_light = self._view_to_light(state, plan, context)
         entry.params = (state.far, 2.0 / settings.resolution, settings.light_size, state.nearest)
         entry.cone = (*pose.direction.tolist(), cone)
         return uniforms

@@ -45,7 +45,7 @@ from pvshadows.scene.sun_fitting import (
     sun_rotation,
 )
 from pvshadows.shaders.shading import LightShading
-from pvshadows.techniques.base import FrameContext, LightFrame
+from pvshadows.techniques.base import FrameContext
 from pvshadows.techniques.cubemap import distance_range
 from pvshadows.techniques.per_light import LightState, PerLightMaps
 from pvshadows.techniques.still_casters import StillCasters
@@ -112,11 +112,6 @@ class MapState(LightState):
         self.depth.release()
 
 
-def _reused(state: MapState) -> list[PassReport]:
-    reused = f"light, casters and coverage unchanged since frame {state.frame}"
-    return [PassReport("map depth", "reused", reused)]
-
-
 def _kind(plan: Cast) -> str:
     return "sun" if plan.pose.kind is LightKind.DIRECTIONAL else "spot"
 
@@ -175,7 +170,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
     def _update_spot(self, plan: Cast, context: FrameContext, state: MapState) -> list[PassReport]:
         pose, settings = plan.pose, plan.settings
         if self._still_right(state, plan):
-            return _reused(state)
+            return self._reused(state)
         state.planned = None
         inside = plan.casters
         ranged = inside or context.snapshot.casters
@@ -262,7 +257,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             fit = sun_fit_over_both(state.fit, fit) or fit
         state.fit_view = fit_key
         if state.planned_fit is fit and self._still_right(state, plan):
-            return _reused(state)
+            return self._reused(state)
         state.planned = None
         state.fit = fit
         kept = state.casters_of
@@ -306,7 +301,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             return [PassReport("map depth", "skipped", "every caster is translucent"), *companion]
         key = (*key, context.snapshot.keys_of(opaque))
         if key == state.key:
-            return [*_reused(state), *companion]
+            return [*self._reused(state), *companion]
         assert self._pass is not None and state.light_to_clip is not None
         assert state.world_to_light is not None  # set with the fit, before any draw
         reports = []
@@ -401,39 +396,17 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             translucent=state.companion is not None,
         )
 
-    def again(
-        self, plan: Cast, context: FrameContext, last: LightFrame, same_view: bool
-    ) -> LightFrame | None:
-        """Return a spot map's last :class:`LightFrame`, seen from this frame's camera.
+    def _reused(self, state: MapState) -> list[PassReport]:
+        reused = f"light, casters and coverage unchanged since frame {state.frame}"
+        return [PassReport("map depth", "reused", reused)]
 
-        A spot light's map holds while its cast is the one it was drawn for;
-        only its view-to-light matrix follows the camera. A sun's map is fitted
-        to the view, so the frame brings it up to date (``None``).
+    def _view_to_light(self, state: MapState, plan: Cast, context: FrameContext) -> np.ndarray:
+        assert state.world_to_light is not None  # set with the fit, before any draw
+        return state.world_to_light @ context.view.view_to_world
 
-        Parameters
-        ----------
-        plan : Cast
-            The light's cast, the one ``last`` was made for.
-        context : FrameContext
-            This frame's camera.
-        last : LightFrame
-            What the light was given last frame.
-        same_view : bool
-            Whether the camera is last frame's.
-
-        Returns
-        -------
-        LightFrame or None
-            The reused pass, last frame's shading and textures, and its entry.
-        """
-        state = self._states.get(plan.key)
-        if plan.pose.kind is LightKind.DIRECTIONAL or not self._still_right(state, plan):
-            return None
-        assert state is not None and state.world_to_light is not None  # a drawn map's
-        entry = last.entry
-        if not same_view:
-            entry = entry.seen_from(state.world_to_light @ context.view.view_to_world)
-        return LightFrame(_reused(state), last.shading, entry, last.samplers)
+    def _holds_again(self, state: MapState, plan: Cast, context: FrameContext) -> bool:
+        """Whether a light's map is not a sun's: a sun's is fitted to the view, so brought up."""
+        return plan.pose.kind is not LightKind.DIRECTIONAL
 
     def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
         """Fill the light's block entry (its matrices and parameters); return its textures.
@@ -459,7 +432,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         )
         if state.companion is not None:
             samplers.update(self._filters.activate_transmittance(i, state.companion.texture))
-        entry.view_to_light = state.world_to_light @ context.view.view_to_world
+        entry.view_to_light = self._view_to_light(state, plan, context)
         entry.params = state.params
         if _kind(plan) == "spot":
             # A point light's map covers only its casters' cone; it lights beyond it.

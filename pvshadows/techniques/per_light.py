@@ -15,12 +15,13 @@ from pvshadows.gl.capabilities import image_copies_supported
 from pvshadows.gl.caster_draws import CasterDraws
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import Cast
+from pvshadows.model.report import PassReport
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
-from pvshadows.techniques.base import FrameContext, Releasable
+from pvshadows.techniques.base import FrameContext, LightFrame, Releasable
 from pvshadows.techniques.filtering import FilterBindings, lookup_shading
 from pvshadows.techniques.still_casters import DepthStep, MapT, StillCasters, TargetT, depth_steps
 from pvshadows.techniques.translucent import Companion
@@ -113,11 +114,13 @@ def caster_draws(
     return CasterDraws(drawn, transposed.transpose(0, 2, 1), culls, batch, in_batch)
 
 
-class PerLightMaps(Generic[StateT, PassT]):
+class PerLightMaps(ABC, Generic[StateT, PassT]):
     """Keeps one :class:`LightState` per light and the filters' textures.
 
     Subclasses set ``name``, fill ``self._states`` keyed by
-    ``vtk_id(light)``, and set ``self._pass`` to the pass that draws their maps.
+    ``vtk_id(light)``, set ``self._pass`` to the pass that draws their maps,
+    and say how a map is reported reused, how the camera's view reaches the
+    light's space, and what else must hold for a light to be taken again.
 
     Parameters
     ----------
@@ -190,6 +193,58 @@ class PerLightMaps(Generic[StateT, PassT]):
             )
             self._shadings[key] = shading
         return shading
+
+    def again(
+        self, plan: Cast, context: FrameContext, last: LightFrame, same_view: bool
+    ) -> LightFrame | None:
+        """Return a light's last :class:`LightFrame`, seen from this frame's camera.
+
+        A map holds while its cast is the one it was drawn for
+        (:meth:`_still_right`) and what else the technique asks holds
+        (:meth:`_holds_again`); only the view-to-light matrix follows the
+        camera.
+
+        Parameters
+        ----------
+        plan : Cast
+            The light's cast, the one ``last`` was made for.
+        context : FrameContext
+            This frame's camera.
+        last : LightFrame
+            What the light was given last frame.
+        same_view : bool
+            Whether the camera is last frame's.
+
+        Returns
+        -------
+        LightFrame or None
+            The reused pass, last frame's shading and textures, and its entry;
+            ``None`` when the light must be brought up to date.
+        """
+        state = self._states.get(plan.key)
+        if state is None or not self._still_right(state, plan):
+            return None
+        if not self._holds_again(state, plan, context):
+            return None
+        entry = last.entry
+        if not same_view:
+            entry = entry.seen_from(self._view_to_light(state, plan, context))
+        return LightFrame(self._reused(state), last.shading, entry, last.samplers)
+
+    @abstractmethod
+    def _reused(self, state: StateT) -> list[PassReport]:
+        """Return the report of a light's map reused as it is."""
+
+    @abstractmethod
+    def _view_to_light(self, state: StateT, plan: Cast, context: FrameContext) -> np.ndarray:
+        """Return the ``(4, 4)`` matrix from this frame's view coordinates to the light's space."""
+
+    @abstractmethod
+    def _holds_again(self, state: StateT, plan: Cast, context: FrameContext) -> bool:
+        """Whether what a light whose map is still right was given last frame holds in this one.
+
+        A technique that notes which lights each frame binds notes the light.
+        """
 
     @staticmethod
     def _still_right(state: LightState | None, plan: Cast) -> bool:
