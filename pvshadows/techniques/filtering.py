@@ -120,12 +120,8 @@ class FilterBindings:
 
         Parameters
         ----------
-        vtk_index : int
-            The light's index among VTK's switched-on lights.
-        settings : ShadowSettings
-            Its filter and bias settings.
-        depth : DepthTexture, CubeSlot or None
-            Its shadow map, ``None`` when it had nothing to draw.
+        vtk_index, settings, depth
+            As for :meth:`samplers` (``settings`` gives the biases too).
         entry : LightEntry
             The light's entry of the frame's uniform block.
 
