@@ -346,7 +346,7 @@ def plan_frame(
     reach = ReachCache() if reach is None else reach
     warned = set() if warned is None else warned
     gpu = extrude_on_gpu if extrude_on_gpu is not None else lambda: True
-    shared = _Shared(snapshot, in_view, memo)
+    shared = _Shared(snapshot, in_view, memo if memo is not None else PlanMemo())
     planned = 0
     for index, light in enumerate(lights):
         inputs = (light, pose_time(light), settings_for(light), index, vtk_index, snapshot)
@@ -375,22 +375,11 @@ def plan_frame(
 class _Shared:
     """What the lights planned in one frame share, worked out once when first asked."""
 
-    def __init__(self, snapshot: Snapshot, in_view: ViewSight, memo: PlanMemo | None) -> None:
+    def __init__(self, snapshot: Snapshot, in_view: ViewSight, poses: PlanMemo) -> None:
         self.snapshot = snapshot
         self.in_view = in_view
-        self._memo = memo
-        self._poses: dict[int, LightPose] = {}
-
-    def pose(self, light: vtk.vtkLight, time: int) -> LightPose:
-        """Return the light's pose (:func:`light_pose`) at its pose time, read once this frame.
-
-        The memo's pose of the light stands while its pose time is the one given.
-        """
-        key = id(light)
-        if key not in self._poses:
-            memo = self._memo
-            self._poses[key] = light_pose(light) if memo is None else memo.pose(light, time)
-        return self._poses[key]
+        #: Reads each light's pose once per pose time (:meth:`PlanMemo.pose`).
+        self.pose = poses.pose
 
     @cached_property
     def seen(self) -> list[ActorState]:
