@@ -878,3 +878,52 @@ def test_a_lights_pose_is_read_from_vtk_only_when_its_pose_time_moved():
     draw(pl)
     assert memo.poses_read == read + 1
     assert pl.shadows.measure(spot).misclassified <= 0.005
+
+
+@pytest.mark.parametrize("light", ["spot", "point", "directional"])
+def test_a_light_that_only_moved_takes_its_last_plan_to_its_new_pose(light):
+    scene = standard_scene(window_size=(200, 150), light=light)
+    pl = scene.plotter
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    memo, (plan,) = shadows.memo, shadows.plans
+    cast, reposed, planned = plan.cast, memo.reposed, memo.planned
+    scene.light.position = np.add(scene.light.position, (0.05, 0.0, 0.0))
+    draw(pl)
+    (moved,) = shadows.plans
+    assert (memo.reposed - reposed, memo.planned - planned) == (1, 1)
+    assert moved.cast is not cast and moved.cast.casters is cast.casters
+    assert moved.cast.pose.position.tolist() == list(scene.light.position)
+    assert pl.shadows.last_frame.passes_run >= 1
+    assert pl.shadows.measure(scene.light).misclassified <= 0.005
+
+
+@pytest.mark.parametrize(
+    "change",
+    ["switched off", "widened to a point light", "out of its cover"],
+)
+def test_a_moved_spot_light_whose_decisions_change_is_planned_afresh(change):
+    scene = standard_scene(window_size=(200, 150), light="spot")
+    pl = scene.plotter
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    memo = pl.shadows._renderers[0].memo
+    reposed, planned = memo.reposed, memo.planned
+    scene.light.position = np.add(scene.light.position, (0.05, 0.0, 0.0))
+    if change == "switched off":
+        scene.light.switch_off()
+    elif change == "widened to a point light":
+        scene.light.cone_angle = 120.0
+    else:
+        scene.light.position = np.add(scene.light.position, (3.0, 0.0, 0.0))
+    draw(pl)
+    (plan,) = pl.shadows._renderers[0].plans
+    assert (memo.reposed - reposed, memo.planned - planned) == (0, 1)
+    if change == "switched off":
+        assert plan.cast is None
+        assert pl.shadows.last_frame.passes_run == 0
+    else:
+        assert plan.technique == ("cubemap" if change == "widened to a point light" else "map")
+        assert pl.shadows.measure(scene.light).misclassified <= 0.005
+

@@ -115,6 +115,9 @@ class PlanMemo:
     poses_read : int
         Light poses read from VTK, over all frames (a light's pose is read
         again only when its pose time moved).
+    reposed : int
+        Lights planned again by taking their last plan to their new pose
+        (:meth:`repose`), over all frames; counted in :attr:`planned` too.
     """
 
     def __init__(self) -> None:
@@ -122,16 +125,21 @@ class PlanMemo:
         self.made = 0
         self.planned = 0
         self.poses_read = 0
+        self.reposed = 0
         self._poses: dict[int, tuple[vtk.vtkLight, int, LightPose]] = {}
         self._tested = 0
         self._witnesses: dict[int, int] = {}
         self._plans: dict[int, tuple[tuple, LightPlan, int, ViewUse, object]] = {}
+        self._techniques: dict[int, tuple[LightKind, ShadowSettings, bool, str, str]] = {}
+        self._reached: dict[int, tuple[np.ndarray, Snapshot, _Reached]] = {}
         self._in_view: tuple[Snapshot, FrameView, ViewSight] | None = None
 
     def forget(self) -> None:
         """Plan every light again next frame."""
         self._plans = {}
         self._poses = {}
+        self._techniques = {}
+        self._reached = {}
         self._in_view = None
 
     def pose(self, light: vtk.vtkLight, time: int) -> LightPose:
@@ -161,6 +169,59 @@ class PlanMemo:
         self.poses_read += 1
         self._poses[id(light)] = (light, time, pose)
         return pose
+
+    def technique(
+        self, light: vtk.vtkLight, kind: LightKind, settings: ShadowSettings, only_a_plane: bool
+    ) -> tuple[str, str]:
+        """Return the technique a light casts with and why, chosen again only when an input changed.
+
+        Parameters
+        ----------
+        light : vtk.vtkLight
+            The light.
+        kind : LightKind
+            Its kind.
+        settings : ShadowSettings
+            Its settings (compared by identity).
+        only_a_plane : bool
+            Whether the only receiver is one plane.
+
+        Returns
+        -------
+        technique, why : str
+            As the planner's choice of a technique gives them.
+        """
+        kept = self._techniques.get(id(light))
+        inputs = (kind, settings, only_a_plane)
+        if kept is None or kept[:3] != inputs:  # tuples compare items by identity first
+            kept = (*inputs, *_technique_for(*inputs))
+            self._techniques[id(light)] = kept
+        return kept[3], kept[4]
+
+    def reached(self, light: vtk.vtkLight, hits: np.ndarray, snapshot: Snapshot) -> _Reached:
+        """Return what a spot light reaches of a snapshot, split once per answer of its reach.
+
+        Parameters
+        ----------
+        light : vtk.vtkLight
+            The spot light.
+        hits : numpy.ndarray
+            :meth:`ReachCache.reaches` of it this frame: the same array while
+            its answers hold.
+        snapshot : Snapshot
+            This frame's actors.
+
+        Returns
+        -------
+        tuple
+            The receivers it reaches (a mask over the snapshot's), the
+            casters it reaches and the box around them.
+        """
+        kept = self._reached.get(id(light))
+        if kept is None or kept[0] is not hits or kept[1] is not snapshot:
+            kept = (hits, snapshot, _reached_of(hits, snapshot))
+            self._reached[id(light)] = kept
+        return kept[2]
 
     @property
     def view_tests(self) -> int:
@@ -223,6 +284,75 @@ class PlanMemo:
         del plan.notes[planned:]
         return plan
 
+    def repose(
+        self,
+        inputs: tuple,
+        in_view: ViewSight,
+        reach: ReachCache,
+        shared: _Shared,
+        renderer: vtk.vtkRenderer,
+    ) -> LightPlan | None:
+        """Return a light's last plan cast from its new pose, when only where it stands changed.
+
+        A light whose pose time alone moved (the same settings, place and
+        snapshot, seen as the plan looked at the view) keeps its technique,
+        casters, settings and notes while its new pose decides nothing anew:
+        it still may cast (:func:`_casts_nothing`), it keeps its kind, it
+        draws a map or a cube (a volume's extrusion and z-mode, and a planar
+        mask, follow the light), a spot light's cover still holds its cone
+        so that it reaches the very actors it did (:meth:`ReachCache.reaches`
+        hands back the same answers), and no map is to be fitted to its
+        casters from where it now stands (:func:`_fitted_to_casters`). The
+        plan then takes the new pose; else ``None``, and the light is
+        planned from the start.
+        """
+        light, time, settings, _, _, snapshot = inputs
+        kept = self._plans.get(id(light))
+        if kept is None:
+            return None
+        before, plan, planned, use, view_key = kept
+        cast = plan.cast
+        if (
+            type(cast) is not Cast
+            or isinstance(use, str)
+            or not _same_inputs((before[0], time, *before[2:]), inputs)
+            or _view_key(use, in_view) != view_key
+            or _casts_nothing(light, settings, renderer) is not None
+        ):
+            return None
+        try:
+            pose = shared.pose(light, time)
+        except ValueError:
+            return None
+        if pose.kind is not plan.kind or cast.pose.kind is not plan.kind:
+            return None
+        if pose.kind is LightKind.SPOT:
+            split = self._reached.get(id(light))
+            if split is None or split[1] is not snapshot:
+                return None
+            if reach.reaches(plan.key, pose, snapshot) is not split[0]:
+                return None
+            box = split[2].box
+        else:
+            box = snapshot.casters_box
+        if _fitted_to_casters(cast.technique, pose, box) is not None:
+            return None
+        del plan.notes[planned:]
+        plan.cast = Cast(
+            light,
+            cast.index,
+            cast.vtk_index,
+            cast.kind,
+            cast.settings,
+            cast.technique,
+            pose,
+            cast.casters,
+            cast.notes,
+        )
+        self._plans[id(light)] = (inputs, *kept[1:])
+        self.reposed += 1
+        return plan
+
     def keep(self, inputs: tuple, plan: LightPlan, use: ViewUse, in_view: ViewSight) -> None:
         """Keep a light's plan of this frame, what it was made from and what it saw."""
         self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes), use, _view_key(use, in_view))
@@ -232,8 +362,9 @@ class PlanMemo:
         alive = {id(plan.light) for plan in plans}
         for key in set(self._plans) - alive:
             del self._plans[key]
-        for key in set(self._poses) - alive:
-            del self._poses[key]
+        for kept in (self._poses, self._techniques, self._reached):
+            for key in set(kept) - alive:
+                del kept[key]
 
 
 def _moved_out_of_reach(
@@ -352,10 +483,13 @@ def plan_frame(
         inputs = (light, pose_time(light), settings_for(light), index, vtk_index, snapshot)
         plan = memo.recall(inputs, in_view, reach, shared.pose) if memo is not None else None
         if plan is None:
-            plan, use = _plan_light(renderer, shared, inputs, reach, warned, gpu)
-            planned += 1
             if memo is not None:
-                memo.keep(inputs, plan, use, in_view)
+                plan = memo.repose(inputs, in_view, reach, shared, renderer)
+            if plan is None:
+                plan, use = _plan_light(renderer, shared, inputs, reach, warned, gpu)
+                if memo is not None:
+                    memo.keep(inputs, plan, use, in_view)
+            planned += 1
         elif isinstance(plan.cast, VolumeCast):
             choose_volume_zmode(plan.cast, plan.cast.volume, renderer, warned)
         if vtk.vtkLight.GetSwitch(light):
@@ -372,14 +506,44 @@ def plan_frame(
     return plans
 
 
+class _Reached(NamedTuple):
+    """What a light reaches of a snapshot's actors."""
+
+    #: The receivers it reaches, a mask over the snapshot's receivers.
+    receivers: np.ndarray
+    #: The casters it reaches, in the snapshot's order.
+    casters: list[ActorState]
+    #: The ``(2, 3)`` box around them.
+    box: np.ndarray
+
+
+def _reached_of(hits: np.ndarray, snapshot: Snapshot) -> _Reached:
+    """Split a spot light's reach (a bool per actor of ``snapshot``) into receivers and casters."""
+    casters = hits[snapshot.caster_index]
+    within = snapshot.casters_at(np.flatnonzero(casters))
+    every = within is snapshot.casters
+    box = snapshot.casters_box if every else box_around(snapshot.caster_bounds[casters])
+    return _Reached(hits[snapshot.receiver_index], within, box)
+
+
 class _Shared:
     """What the lights planned in one frame share, worked out once when first asked."""
 
-    def __init__(self, snapshot: Snapshot, in_view: ViewSight, poses: PlanMemo) -> None:
+    def __init__(self, snapshot: Snapshot, in_view: ViewSight, memo: PlanMemo) -> None:
         self.snapshot = snapshot
         self.in_view = in_view
         #: Reads each light's pose once per pose time (:meth:`PlanMemo.pose`).
-        self.pose = poses.pose
+        self.pose = memo.pose
+        #: Chooses each light's technique once per input (:meth:`PlanMemo.technique`).
+        self.technique = memo.technique
+        #: Splits each spot light's reach once per answer (:meth:`PlanMemo.reached`).
+        self.reached = memo.reached
+
+    @cached_property
+    def every_actor(self) -> _Reached:
+        """What a point light or a sun reaches: every actor."""
+        snapshot = self.snapshot
+        return _Reached(snapshot.every_receiver, snapshot.casters, snapshot.casters_box)
 
     @cached_property
     def seen(self) -> list[ActorState]:
@@ -413,36 +577,24 @@ def _plan_light(
     light, _, settings, index, vtk_index, _ = inputs
     plan = LightPlan(light, index, vtk_index, light_kind(light), settings)
     snapshot = shared.snapshot
-    if settings is None:
-        plan.notes.append(unshadowed_reason(light, renderer))
+    unlit = _casts_nothing(light, settings, renderer)
+    if unlit is not None:
+        plan.notes.append(unlit)
         return plan, None
-    if not casts_light(light):
-        plan.notes.append(
-            "the light is off or has zero intensity: it casts nothing and costs nothing"
-        )
-        return plan, None
-    if settings.strength == 0.0:
-        plan.notes.append("strength=0: its shadows would remove nothing, so none is drawn")
-        return plan, None
-    if vtk.vtkLight.LightTypeIsHeadlight(light):
-        plan.notes.append(
-            "a headlight's shadows hide behind the objects that cast them: none drawn"
-        )
-        return plan, None
+    assert settings is not None  # a light without settings casts nothing
     try:
         pose = shared.pose(light, inputs[1])
     except ValueError as error:
         plan.notes.append(f"casts nothing: {error}")
         return plan, None
-    technique, why = _technique_for(plan.kind, settings, shared.only_a_plane)
+    technique, why = shared.technique(light, plan.kind, settings, shared.only_a_plane)
     casters = snapshot.casters
     if pose.kind is LightKind.SPOT:
-        reached = reach.reaches(plan.key, pose, snapshot)
-        reached_receivers = reached[snapshot.receiver_index]
+        reached = shared.reached(light, reach.reaches(plan.key, pose, snapshot), snapshot)
     else:  # a point light or a sun reaches every actor
-        reached, reached_receivers = None, snapshot.every_receiver
-    use: ViewUse = reached_receivers
-    if not shared.in_view.sees_some(reached_receivers):
+        reached = shared.every_actor
+    use: ViewUse = reached.receivers
+    if not shared.in_view.sees_some(reached.receivers):
         plan.notes.append(
             "no receiver the camera sees is in the light's reach: it casts nothing and "
             "costs nothing"
@@ -450,23 +602,16 @@ def _plan_light(
             else "the camera sees no receiver: the light casts nothing and costs nothing"
         )
         return plan, use
-    hits = None if reached is None else reached[snapshot.caster_index]
-    within = casters if hits is None else snapshot.casters_at(np.flatnonzero(hits))
+    within, box = reached.casters, reached.box
     if not within:
         plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
         return plan, use
     plan.notes.append(why)
-    box = (
-        snapshot.casters_box
-        if hits is None or within is casters
-        else box_around(snapshot.caster_bounds[hits])
-    )
-    if technique == "cubemap" and pose.kind is LightKind.POINT:
-        technique, pose = _fit_far_point(pose, box, plan.notes)
-    elif technique == "map" and pose.kind is LightKind.SPOT:
-        seen_from = _casters_seen_from(pose, box)
-        if _far(seen_from):
-            pose, use = _fit_far_spot(pose, seen_from, shared.seen, plan.notes), EVERY_RECEIVER
+    seen_from = _fitted_to_casters(technique, pose, box)
+    if seen_from is not None and technique == "cubemap":
+        technique, pose = _fit_far_point(pose, seen_from, plan.notes)
+    elif seen_from is not None:
+        pose, use = _fit_far_spot(pose, seen_from, shared.seen, plan.notes), EVERY_RECEIVER
     if technique == "cubemap" and settings.passes == "auto":
         settings = cube_passes(settings, within, snapshot, plan.notes)
     if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
@@ -481,6 +626,21 @@ def _plan_light(
         plan.notes.append(shared.plane.reason)
     plan.cast = cast
     return plan, use
+
+
+def _casts_nothing(
+    light: vtk.vtkLight, settings: ShadowSettings | None, renderer: vtk.vtkRenderer
+) -> str | None:
+    """Return why a light casts nothing whatever its pose, or ``None`` when it may cast."""
+    if settings is None:
+        return unshadowed_reason(light, renderer)
+    if not casts_light(light):
+        return "the light is off or has zero intensity: it casts nothing and costs nothing"
+    if settings.strength == 0.0:
+        return "strength=0: its shadows would remove nothing, so none is drawn"
+    if vtk.vtkLight.LightTypeIsHeadlight(light):
+        return "a headlight's shadows hide behind the objects that cast them: none drawn"
+    return None
 
 
 def _volume_cast(cast: Cast, volume: VolumePlan) -> VolumeCast:
@@ -557,18 +717,35 @@ def _fit_far_spot(
     return _parallel(pose, seen_from, notes)
 
 
-def _fit_far_point(pose: LightPose, box: np.ndarray, notes: list[str]) -> tuple[str, LightPose]:
+def _fitted_to_casters(technique: str, pose: LightPose, box: np.ndarray) -> _SeenFrom | None:
+    """Return how a light sees its casters when its map is to be fitted to them, else ``None``.
+
+    A point light's cube gives way to a map of its casters' cone when they
+    subtend less than :data:`FIT_CONE_BELOW` (:func:`_fit_far_point`); a
+    spot light's map turns orthographic when they are :func:`_far`
+    (:func:`_fit_far_spot`). ``box`` is the ``(2, 3)`` box around the casters.
+    """
+    if technique == "cubemap" and pose.kind is LightKind.POINT:
+        seen_from = _casters_seen_from(pose, box)
+        return None if seen_from.distance <= seen_from.radius / _FIT_CONE_SINE else seen_from
+    if technique == "map" and pose.kind is LightKind.SPOT:
+        seen_from = _casters_seen_from(pose, box)
+        return seen_from if _far(seen_from) else None
+    return None
+
+
+def _fit_far_point(
+    pose: LightPose, seen_from: _SeenFrom, notes: list[str]
+) -> tuple[str, LightPose]:
     """Give a point light whose casters subtend a small angle a perspective map of their cone.
 
     Seen from far away, casters cover a few texels of one cube face and the
     texel-sized biases swallow their shadows; a map aimed at them spends
     every texel on them, at any distance. Receivers outside the cone stay
-    lit (nothing there can shadow them). ``box`` is the ``(2, 3)`` box around the casters.
+    lit (nothing there can shadow them). ``seen_from`` is what
+    :func:`_fitted_to_casters` says of the casters.
     """
-    seen_from = _casters_seen_from(pose, box)
     radius, distance, _ = seen_from
-    if distance <= radius / _FIT_CONE_SINE:
-        return "cubemap", pose
     half = float(np.degrees(np.arcsin(radius / distance)))
     if radius / distance < PARALLEL_BELOW:
         return "map", _parallel(pose, seen_from, notes)

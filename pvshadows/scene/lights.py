@@ -204,34 +204,39 @@ def light_pose(light: vtk.vtkLight) -> LightPose:
     """
     # plain floats for three-vectors: numpy's per-call cost outweighs its speed here
     position = vtk.vtkLight.GetTransformedPosition(light)
-    focal_point = vtk.vtkLight.GetTransformedFocalPoint(light)
-    if not all(map(math.isfinite, (*position, *focal_point))):
+    px, py, pz = position
+    fx, fy, fz = vtk.vtkLight.GetTransformedFocalPoint(light)
+    if not all(map(math.isfinite, (px, py, pz, fx, fy, fz))):
         msg = (
             f"light position {tuple(light.GetPosition())} and focal_point "
             f"{tuple(light.GetFocalPoint())} must be finite numbers"
         )
         raise ValueError(msg)
-    kind = light_kind(light)
     cone_angle = vtk.vtkLight.GetConeAngle(light)
-    if kind is LightKind.SPOT and not cone_angle > 0.0:
+    if not vtk.vtkLight.GetPositional(light):
+        kind = LightKind.DIRECTIONAL
+    elif cone_angle >= 90.0:
+        kind = LightKind.POINT
+    elif cone_angle > 0.0:
+        kind = LightKind.SPOT
+    else:
         msg = (
             f"cone_angle={cone_angle} is not allowed for a spot light: it must be "
             "more than 0 degrees (90 or more makes it a point light)"
         )
         raise ValueError(msg)
-    offset = [f - p for f, p in zip(focal_point, position, strict=True)]
-    length = math.hypot(*offset)
+    ox, oy, oz = fx - px, fy - py, fz - pz
+    length = math.hypot(ox, oy, oz)
     if length == 0.0 or not math.isfinite(length):
-        if kind is LightKind.POINT:
-            offset, length = [0.0, 0.0, -1.0], 1.0
-        else:
+        if kind is not LightKind.POINT:
             msg = (
                 f"a {kind.value} light needs a direction: its position and focal_point "
                 f"are both {tuple(position)}"
             )
             raise ValueError(msg)
-    direction = np.array(offset) / length
-    return LightPose(kind, np.array(position, dtype=np.float64), direction, cone_angle)
+        ox, oy, oz, length = 0.0, 0.0, -1.0, 1.0
+    direction = np.array((ox / length, oy / length, oz / length))
+    return LightPose(kind, np.array(position), direction, cone_angle)
 
 
 def casts_light(light: vtk.vtkLight) -> bool:
