@@ -129,17 +129,13 @@ class PlanMemo:
         self._poses: dict[int, tuple[vtk.vtkLight, int, LightPose]] = {}
         self._tested = 0
         self._witnesses: dict[int, int] = {}
-        self._plans: dict[int, tuple[tuple, LightPlan, int, ViewUse, object]] = {}
-        self._techniques: dict[int, tuple[LightKind, ShadowSettings, bool, str, str]] = {}
-        self._reached: dict[int, tuple[np.ndarray, Snapshot, _Reached]] = {}
+        self._plans: dict[int, tuple[tuple, LightPlan, int, ViewUse, object, _Reached | None]] = {}
         self._in_view: tuple[Snapshot, FrameView, ViewSight] | None = None
 
     def forget(self) -> None:
         """Plan every light again next frame."""
         self._plans = {}
         self._poses = {}
-        self._techniques = {}
-        self._reached = {}
         self._in_view = None
 
     def pose(self, light: vtk.vtkLight, time: int) -> LightPose:
@@ -169,59 +165,6 @@ class PlanMemo:
         self.poses_read += 1
         self._poses[id(light)] = (light, time, pose)
         return pose
-
-    def technique(
-        self, light: vtk.vtkLight, kind: LightKind, settings: ShadowSettings, only_a_plane: bool
-    ) -> tuple[str, str]:
-        """Return the technique a light casts with and why, chosen again only when an input changed.
-
-        Parameters
-        ----------
-        light : vtk.vtkLight
-            The light.
-        kind : LightKind
-            Its kind.
-        settings : ShadowSettings
-            Its settings (compared by identity).
-        only_a_plane : bool
-            Whether the only receiver is one plane.
-
-        Returns
-        -------
-        technique, why : str
-            As the planner's choice of a technique gives them.
-        """
-        kept = self._techniques.get(id(light))
-        inputs = (kind, settings, only_a_plane)
-        if kept is None or kept[:3] != inputs:  # tuples compare items by identity first
-            kept = (*inputs, *_technique_for(*inputs))
-            self._techniques[id(light)] = kept
-        return kept[3], kept[4]
-
-    def reached(self, light: vtk.vtkLight, hits: np.ndarray, snapshot: Snapshot) -> _Reached:
-        """Return what a spot light reaches of a snapshot, split once per answer of its reach.
-
-        Parameters
-        ----------
-        light : vtk.vtkLight
-            The spot light.
-        hits : numpy.ndarray
-            :meth:`ReachCache.reaches` of it this frame: the same array while
-            its answers hold.
-        snapshot : Snapshot
-            This frame's actors.
-
-        Returns
-        -------
-        tuple
-            The receivers it reaches (a mask over the snapshot's), the
-            casters it reaches and the box around them.
-        """
-        kept = self._reached.get(id(light))
-        if kept is None or kept[0] is not hits or kept[1] is not snapshot:
-            kept = (hits, snapshot, _reached_of(hits, snapshot))
-            self._reached[id(light)] = kept
-        return kept[2]
 
     @property
     def view_tests(self) -> int:
@@ -308,9 +251,9 @@ class PlanMemo:
         """
         light, time, settings, _, _, snapshot = inputs
         kept = self._plans.get(id(light))
-        if kept is None:
+        if kept is None or kept[0][5] is not snapshot:
             return None
-        before, plan, planned, use, view_key = kept
+        before, plan, planned, use, view_key, reached = kept
         cast = plan.cast
         if (
             type(cast) is not Cast
@@ -326,16 +269,14 @@ class PlanMemo:
             return None
         if pose.kind is not plan.kind or cast.pose.kind is not plan.kind:
             return None
-        if pose.kind is LightKind.SPOT:
-            split = self._reached.get(id(light))
-            if split is None or split[1] is not snapshot:
+        if reached is None:
+            return None
+        if reached.hits is None:  # it reaches every actor: this snapshot's, still
+            if reached.casters is not snapshot.casters:
                 return None
-            if reach.reaches(plan.key, pose, snapshot) is not split[0]:
-                return None
-            box = split[2].box
-        else:
-            box = snapshot.casters_box
-        if _fitted_to_casters(cast.technique, pose, box) is not None:
+        elif reach.reaches(plan.key, pose, snapshot) is not reached.hits:
+            return None
+        if _fitted_to_casters(cast.technique, pose, reached.box) is not None:
             return None
         del plan.notes[planned:]
         plan.cast = Cast(
@@ -353,18 +294,25 @@ class PlanMemo:
         self.reposed += 1
         return plan
 
-    def keep(self, inputs: tuple, plan: LightPlan, use: ViewUse, in_view: ViewSight) -> None:
-        """Keep a light's plan of this frame, what it was made from and what it saw."""
-        self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes), use, _view_key(use, in_view))
+    def keep(
+        self,
+        inputs: tuple,
+        plan: LightPlan,
+        use: ViewUse,
+        in_view: ViewSight,
+        reached: _Reached | None = None,
+    ) -> None:
+        """Keep a light's plan of this frame, what it was made from, saw and reached."""
+        key = _view_key(use, in_view)
+        self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes), use, key, reached)
 
     def keep_only(self, plans: list[LightPlan]) -> None:
         """Forget the lights that are no longer the renderer's."""
         alive = {id(plan.light) for plan in plans}
         for key in set(self._plans) - alive:
             del self._plans[key]
-        for kept in (self._poses, self._techniques, self._reached):
-            for key in set(kept) - alive:
-                del kept[key]
+        for key in set(self._poses) - alive:
+            del self._poses[key]
 
 
 def _moved_out_of_reach(
@@ -486,9 +434,9 @@ def plan_frame(
             if memo is not None:
                 plan = memo.repose(inputs, in_view, reach, shared, renderer)
             if plan is None:
-                plan, use = _plan_light(renderer, shared, inputs, reach, warned, gpu)
+                plan, use, reached = _plan_light(renderer, shared, inputs, reach, warned, gpu)
                 if memo is not None:
-                    memo.keep(inputs, plan, use, in_view)
+                    memo.keep(inputs, plan, use, in_view, reached)
             planned += 1
         elif isinstance(plan.cast, VolumeCast):
             choose_volume_zmode(plan.cast, plan.cast.volume, renderer, warned)
@@ -509,6 +457,8 @@ def plan_frame(
 class _Reached(NamedTuple):
     """What a light reaches of a snapshot's actors."""
 
+    #: Its reach's answers (:meth:`ReachCache.reaches`); ``None`` when it reaches every actor.
+    hits: np.ndarray | None
     #: The receivers it reaches, a mask over the snapshot's receivers.
     receivers: np.ndarray
     #: The casters it reaches, in the snapshot's order.
@@ -523,7 +473,7 @@ def _reached_of(hits: np.ndarray, snapshot: Snapshot) -> _Reached:
     within = snapshot.casters_at(np.flatnonzero(casters))
     every = within is snapshot.casters
     box = snapshot.casters_box if every else box_around(snapshot.caster_bounds[casters])
-    return _Reached(hits[snapshot.receiver_index], within, box)
+    return _Reached(hits, hits[snapshot.receiver_index], within, box)
 
 
 class _Shared:
@@ -534,16 +484,12 @@ class _Shared:
         self.in_view = in_view
         #: Reads each light's pose once per pose time (:meth:`PlanMemo.pose`).
         self.pose = memo.pose
-        #: Chooses each light's technique once per input (:meth:`PlanMemo.technique`).
-        self.technique = memo.technique
-        #: Splits each spot light's reach once per answer (:meth:`PlanMemo.reached`).
-        self.reached = memo.reached
 
     @cached_property
     def every_actor(self) -> _Reached:
         """What a point light or a sun reaches: every actor."""
         snapshot = self.snapshot
-        return _Reached(snapshot.every_receiver, snapshot.casters, snapshot.casters_box)
+        return _Reached(None, snapshot.every_receiver, snapshot.casters, snapshot.casters_box)
 
     @cached_property
     def seen(self) -> list[ActorState]:
@@ -569,10 +515,11 @@ def _plan_light(
     reach: ReachCache,
     warned: set[tuple],
     extrude_on_gpu: Callable[[], bool],
-) -> tuple[LightPlan, ViewUse]:
+) -> tuple[LightPlan, ViewUse, _Reached | None]:
     """Plan one light (``inputs`` as :meth:`PlanMemo.recall` takes them).
 
-    Returns the plan and what it looked at of the view (:data:`ViewUse`).
+    Returns the plan, what it looked at of the view (:data:`ViewUse`) and,
+    for a light that casts, what it reaches.
     """
     light, _, settings, index, vtk_index, _ = inputs
     plan = LightPlan(light, index, vtk_index, light_kind(light), settings)
@@ -580,17 +527,17 @@ def _plan_light(
     unlit = _casts_nothing(light, settings, renderer)
     if unlit is not None:
         plan.notes.append(unlit)
-        return plan, None
+        return plan, None, None
     assert settings is not None  # a light without settings casts nothing
     try:
         pose = shared.pose(light, inputs[1])
     except ValueError as error:
         plan.notes.append(f"casts nothing: {error}")
-        return plan, None
-    technique, why = shared.technique(light, plan.kind, settings, shared.only_a_plane)
+        return plan, None, None
+    technique, why = _technique_for(plan.kind, settings, shared.only_a_plane)
     casters = snapshot.casters
     if pose.kind is LightKind.SPOT:
-        reached = shared.reached(light, reach.reaches(plan.key, pose, snapshot), snapshot)
+        reached = _reached_of(reach.reaches(plan.key, pose, snapshot), snapshot)
     else:  # a point light or a sun reaches every actor
         reached = shared.every_actor
     use: ViewUse = reached.receivers
@@ -601,11 +548,11 @@ def _plan_light(
             if shared.in_view.sees_some()
             else "the camera sees no receiver: the light casts nothing and costs nothing"
         )
-        return plan, use
+        return plan, use, None
     within, box = reached.casters, reached.box
     if not within:
         plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
-        return plan, use
+        return plan, use, None
     plan.notes.append(why)
     seen_from = _fitted_to_casters(technique, pose, box)
     if seen_from is not None and technique == "cubemap":
@@ -625,7 +572,7 @@ def _plan_light(
         cast = _planar_cast(cast, shared.plane)
         plan.notes.append(shared.plane.reason)
     plan.cast = cast
-    return plan, use
+    return plan, use, reached
 
 
 def _casts_nothing(

@@ -213,13 +213,14 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
                 and state.range_key[1] == range_key[1]
                 and state.fitted_about is about
             )
-            needed = (far, spot_half(pose, spread, about))
-            if not (kept and spot_fit_holds(state.fitted_for, needed)):
+            if not (
+                kept and spot_fit_holds(state.fitted_for, (far, spot_half(pose, spread, about)))
+            ):
                 room = 0.0 if about is pose else TURN_ROOM
-                fit = spot_fit(pose, settings.resolution, far * 1e-4, far, spread, about, room)
+                half = spot_half(pose, spread, about, room)
+                fit = spot_fit(pose, settings.resolution, far * 1e-4, far, half, about, room)
                 state.light_to_clip, state.texel = fit.light_to_clip, fit.texel
-                state.fitted_for = (far, spot_half(pose, spread, about, room))
-                state.fitted_about = about
+                state.fitted_for, state.fitted_about = (far, half), about
             if state.range_key is None or state.range_key[0] != range_key[0]:
                 state.world_to_light = translation(-pose.position)
             state.range_key, state.range = range_key, (nearest, state.fitted_for[0])
