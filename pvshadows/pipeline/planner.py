@@ -129,7 +129,9 @@ class PlanMemo:
         self._poses: dict[int, tuple[vtk.vtkLight, int, LightPose]] = {}
         self._tested = 0
         self._witnesses: dict[int, int] = {}
-        self._plans: dict[int, tuple[tuple, LightPlan, int, ViewUse, object, _Reached | None]] = {}
+        self._plans: dict[
+            int, tuple[tuple, LightPlan, int, ViewUse, tuple[ViewSight, object], _Reached | None]
+        ] = {}
         self._in_view: tuple[Snapshot, FrameView, ViewSight] | None = None
 
     def forget(self) -> None:
@@ -218,7 +220,7 @@ class PlanMemo:
         same = _same_inputs(kept[0], inputs)
         if not same and (reach is None or not _moved_out_of_reach(kept, inputs, reach, pose_of)):
             return None
-        if _view_key(kept[3], in_view) != kept[4]:
+        if not _seen_alike(kept[4], kept[3], in_view):
             return None
         if not same:
             kept = (inputs, *kept[1:])
@@ -253,13 +255,13 @@ class PlanMemo:
         kept = self._plans.get(id(light))
         if kept is None or kept[0][5] is not snapshot:
             return None
-        before, plan, planned, use, view_key, reached = kept
+        before, plan, planned, use, seen, reached = kept
         cast = plan.cast
         if (
             type(cast) is not Cast
             or isinstance(use, str)
             or not _same_inputs((before[0], time, *before[2:]), inputs)
-            or _view_key(use, in_view) != view_key
+            or not _seen_alike(seen, use, in_view)
             or _casts_nothing(light, settings, renderer) is not None
         ):
             return None
@@ -303,8 +305,8 @@ class PlanMemo:
         reached: _Reached | None = None,
     ) -> None:
         """Keep a light's plan of this frame, what it was made from, saw and reached."""
-        key = _view_key(use, in_view)
-        self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes), use, key, reached)
+        seen = (in_view, _view_key(use, in_view))
+        self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes), use, seen, reached)
 
     def keep_only(self, plans: list[LightPlan]) -> None:
         """Forget the lights that are no longer the renderer's."""
@@ -357,6 +359,15 @@ EVERY_RECEIVER = "every receiver"
 #: sees some receiver and some receiver in the light's reach (that reach, a mask over
 #: the snapshot's receivers), or which receivers it sees (:data:`EVERY_RECEIVER`).
 ViewUse = None | np.ndarray | str
+
+
+def _seen_alike(seen: tuple[ViewSight, object], use: ViewUse, in_view: ViewSight) -> bool:
+    """Whether the view shows what a plan looked at (``use``) as it did when ``seen`` was kept.
+
+    ``seen`` is the sight the plan was made or last kept with and its
+    :func:`_view_key`; the same sight answers alike without a test.
+    """
+    return seen[0] is in_view or _view_key(use, in_view) == seen[1]
 
 
 def _view_key(use: ViewUse, in_view: ViewSight) -> object:

@@ -79,12 +79,16 @@ class LightFrame:
         handed to the block.
     samplers : dict
         The receivers' textures by uniform name.
+    again : bool
+        Whether it is an earlier frame's handed back (:meth:`Technique.again`):
+        its passes then are reported reused.
     """
 
     passes: list[PassReport]
     shading: LightShading
     entry: LightEntry
     samplers: dict[str, object]
+    again: bool = False
 
 
 class Releasable(Protocol):

@@ -226,10 +226,12 @@ class PerLightMaps(ABC, Generic[StateT, PassT]):
             return None
         if not self._holds_again(state, plan, context):
             return None
+        if same_view and last.again:
+            return last  # its reused passes' report as well: nothing in it changed
         entry = last.entry
         if not same_view:
             entry = entry.seen_from(self._view_to_light(state, plan, context))
-        return LightFrame(self._reused(state), last.shading, entry, last.samplers)
+        return LightFrame(self._reused(state), last.shading, entry, last.samplers, again=True)
 
     @abstractmethod
     def _reused(self, state: StateT) -> list[PassReport]:
