@@ -28,12 +28,9 @@ from pvshadows.scene.fitting import MARGIN_TEXELS, flat_and_lit_above, up_for
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import Snapshot
 
-#: A spot's map keeps its fit while its light and casters need no more than it and at
-#: least ``1 / REFIT_SLACK`` of it, in far distance and in spread (:func:`spot_fit_holds`).
+#: A spot's map keeps its fit while its casters need no more than it and at least
+#: ``1 / REFIT_SLACK`` of it, in far distance and in spread (:func:`spot_fit_holds`).
 REFIT_SLACK = 1.1
-#: How much wider (in tangent) than its cone a turning spot light's map is fitted, so that
-#: the fit holds while the light turns on a little (its texels are that much larger then).
-TURN_ROOM = 0.02
 
 
 @dataclass(frozen=True)
@@ -62,7 +59,6 @@ def spot_fit(
     far: float,
     spread: float | None = None,
     about: LightPose | None = None,
-    room: float = 0.0,
 ) -> SpotFit:
     """Return the perspective map holding a spot light's cone, or the casters in it.
 
@@ -84,9 +80,6 @@ def spot_fit(
         default): the one ``spread`` was measured about, which the light may
         have turned from since (:class:`pvshadows.scene.measures.CasterMeasureCache`).
         The whole cone is then held about it: its angle grows by the turn.
-    room : float, default: 0.0
-        How much wider (in tangent) than the cone the map holds
-        (:data:`TURN_ROOM` for a light that is turning).
 
     Returns
     -------
@@ -109,69 +102,29 @@ def spot_fit(
     """
     about = pose if about is None else about
     rotation = _spot_rotation(about)
-    half = spot_half(pose, spread, about, room) * (1.0 + 2.0 * MARGIN_TEXELS / resolution)
+    turned = 0.0 if about is pose else pose.degrees_from(about)
+    cone = math.tan(math.radians(min(pose.cone_angle + turned, 89.0)))
+    half = cone if spread is None else min(cone, spread)
+    half *= 1.0 + 2.0 * MARGIN_TEXELS / resolution
     fov = 2.0 * math.degrees(math.atan(half))
     projection = perspective(fov, 1.0, near, far) @ rotation
     return SpotFit(rotation, projection, float(2.0 * half / resolution))
 
 
-def spot_half(
-    pose: LightPose,
-    spread: float | None = None,
-    about: LightPose | None = None,
-    room: float = 0.0,
-) -> float:
-    """Return the tangent of the half angle a spot light's map holds (before its margin).
-
-    The map holds the light's cone about ``about`` (widened by the light's turn
-    from it), or only its casters when they spread less (:func:`spot_fit`).
-
-    Parameters
-    ----------
-    pose : LightPose
-        The spot light.
-    spread : float, optional
-        The widest spread of the casters that can shadow a receiver
-        (:attr:`ConeMeasures.spread`); the whole cone when not given.
-    about : LightPose, optional
-        The pose whose direction the map looks along (the light's by default).
-    room : float, default: 0.0
-        How much wider (in tangent) than the cone the map holds.
-
-    Returns
-    -------
-    float
-        The tangent.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from pvshadows.scene.spot_fitting import spot_half
-    >>> from pvshadows.scene.lights import LightKind, LightPose
-    >>> pose = LightPose(LightKind.SPOT, np.zeros(3), np.array([0, 0, -1.0]), 45.0)
-    >>> round(spot_half(pose), 6), spot_half(pose, 0.25)
-    (1.0, 0.25)
-    """
-    turned = 0.0 if about is None or about is pose else pose.degrees_from(about)
-    cone = math.tan(math.radians(min(pose.cone_angle + turned, 89.0))) * (1.0 + room)
-    return cone if spread is None else min(cone, spread)
-
-
-def spot_fit_holds(kept: tuple[float, float], needed: tuple[float, float]) -> bool:
+def spot_fit_holds(kept: tuple[float, float | None], needed: tuple[float, float | None]) -> bool:
     """Tell whether a spot's map fitted to ``kept`` can stand in for one fitted to ``needed``.
 
     It can when it reaches as far and spreads as wide, and neither by more
     than :data:`REFIT_SLACK` (its texels then are at most that much larger):
-    a light moving a little, or a caster swaying at the edge of the fit,
-    leaves the map's projection as it was (a swaying caster's map is then
-    redrawn over its still casters' depth,
-    :mod:`pvshadows.techniques.still_casters`).
+    a caster swaying at the edge of the fit leaves the map's projection as
+    it was, so the map is redrawn over its still casters' depth
+    (:mod:`pvshadows.techniques.still_casters`).
 
     Parameters
     ----------
-    kept, needed : tuple of float
-        ``(far, half)``: the far distance of :func:`spot_fit` and the
-        tangent of its half angle (:func:`spot_half`).
+    kept, needed : tuple
+        ``(far, spread)`` of :func:`spot_fit`, ``spread`` ``None`` for the
+        whole cone.
 
     Returns
     -------
@@ -184,10 +137,12 @@ def spot_fit_holds(kept: tuple[float, float], needed: tuple[float, float]) -> bo
     >>> spot_fit_holds((10.0, 0.5), (9.8, 0.49)), spot_fit_holds((10.0, 0.5), (10.2, 0.5))
     (True, False)
     """
-    (far, half), (far_needed, half_needed) = kept, needed
-    return far_needed <= far <= REFIT_SLACK * far_needed and (
-        half_needed <= half <= REFIT_SLACK * half_needed
-    )
+    (far, spread), (far_needed, spread_needed) = kept, needed
+    if not far_needed <= far <= REFIT_SLACK * far_needed:
+        return False
+    if spread is None or spread_needed is None:
+        return spread is spread_needed
+    return spread_needed <= spread <= REFIT_SLACK * spread_needed
 
 
 def _spot_rotation(pose: LightPose) -> np.ndarray:

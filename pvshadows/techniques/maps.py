@@ -29,13 +29,11 @@ from pvshadows.passes.transmittance import TranslucentCaster
 from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.measures import CasterMeasureCache, MeasureGroup
 from pvshadows.scene.spot_fitting import (
-    TURN_ROOM,
     ConeMeasures,
     cone_measures,
     cone_measures_many,
     spot_fit,
     spot_fit_holds,
-    spot_half,
     spot_shadowing_rows,
 )
 from pvshadows.scene.sun_fitting import (
@@ -78,9 +76,8 @@ class MapState(LightState):
     range_key: tuple | None = None
     range: tuple[float, float] = (0.0, 1.0)
     range_snapshot: object = None
-    #: The far distance and half-angle tangent a spot's map is fitted to
-    #: (:func:`spot_fit_holds`, :func:`spot_half`).
-    fitted_for: tuple[float, float] = (0.0, 0.0)
+    #: The far distance and spread a spot's map is fitted to (:func:`spot_fit_holds`).
+    fitted_for: tuple[float, float | None] = (0.0, None)
     #: A spot's nearest and farthest caster distances, and the measures, casters
     #: and snapshot they were taken from (compared by identity).
     distances: tuple[float, float] = (0.0, 1.0)
@@ -203,26 +200,19 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             nearest, far = state.distances
             shadowing = spot_shadowing_rows(pose, inside, snapshot)
             spread = float(measures.spread[shadowing].max()) if len(shadowing) else None
-            # The map looks along the axis the spread was measured about: the light's own,
-            # or one it has turned from by a little since. It keeps its fit while the
-            # light moves and its casters sway as long as the fit holds what they need;
-            # a light that turned is fitted with room to turn on.
-            about = measured.base
             kept = (
                 state.range_key is not None
-                and state.range_key[1] == range_key[1]
-                and state.fitted_about is about
+                and state.range_key[:2] == range_key[:2]
+                and state.fitted_about is measured.base
             )
-            if not (
-                kept and spot_fit_holds(state.fitted_for, (far, spot_half(pose, spread, about)))
-            ):
-                room = 0.0 if about is pose else TURN_ROOM
-                half = spot_half(pose, spread, about, room)
-                fit = spot_fit(pose, settings.resolution, far * 1e-4, far, half, about, room)
-                state.light_to_clip, state.texel = fit.light_to_clip, fit.texel
-                state.fitted_for, state.fitted_about = (far, half), about
-            if state.range_key is None or state.range_key[0] != range_key[0]:
+            if not (kept and spot_fit_holds(state.fitted_for, (far, spread))):
+                # The map looks along the axis the spread was measured about: the light's
+                # own, or one it has turned from by a little since.
+                about = measured.base
+                fit = spot_fit(pose, settings.resolution, far * 1e-4, far, spread, about)
                 state.world_to_light = translation(-pose.position)
+                state.light_to_clip, state.texel = fit.light_to_clip, fit.texel
+                state.fitted_for, state.fitted_about = (far, spread), measured.base
             state.range_key, state.range = range_key, (nearest, state.fitted_for[0])
             state.range_snapshot = context.snapshot
         nearest, far = state.range
