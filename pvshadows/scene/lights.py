@@ -212,14 +212,9 @@ def light_pose(light: vtk.vtkLight) -> LightPose:
             f"{tuple(light.GetFocalPoint())} must be finite numbers"
         )
         raise ValueError(msg)
+    kind = light_kind(light)
     cone_angle = vtk.vtkLight.GetConeAngle(light)
-    if not vtk.vtkLight.GetPositional(light):
-        kind = LightKind.DIRECTIONAL
-    elif cone_angle >= 90.0:
-        kind = LightKind.POINT
-    elif cone_angle > 0.0:
-        kind = LightKind.SPOT
-    else:
+    if kind is LightKind.SPOT and not cone_angle > 0.0:
         msg = (
             f"cone_angle={cone_angle} is not allowed for a spot light: it must be "
             "more than 0 degrees (90 or more makes it a point light)"
