@@ -281,6 +281,7 @@ class PlanMemo:
         if _fitted_to_casters(cast.technique, pose, reached.box) is not None:
             return None
         del plan.notes[planned:]
+        # field by field: dataclasses.replace costs five times as much, once a frame
         plan.cast = Cast(
             light,
             cast.index,
