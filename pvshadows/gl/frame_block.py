@@ -28,6 +28,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.raw_calls import raw_calls
 
 #: The uniform buffer binding point of the block: every program's default.
 BINDING = 0
@@ -177,13 +178,10 @@ class FrameBlock:
 
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         gl = opengl_for(window)
-        # The raw entry points skip PyOpenGL's argument wrappers; imported here, once
-        # PyOpenGL is loaded for the window's platform.
-        from OpenGL.raw.GL.VERSION.GL_1_5 import glBufferData
-        from OpenGL.raw.GL.VERSION.GL_3_0 import glBindBufferBase
-
         self._gl = gl
-        self._send, self._bind_base = glBufferData, glBindBufferBase
+        # Plain ctypes bindings: PyOpenGL's wrappers check and convert each argument.
+        calls = raw_calls()
+        self._send, self._bind_base = calls.buffer_data, calls.bind_buffer_base
         self._buffer = int(gl.glGenBuffers(1))
         self._data = bytearray()
         self._view = (ctypes.c_char * 0).from_buffer(self._data)

@@ -34,7 +34,7 @@ def _bound(name: str, *arguments: type) -> Callable:
 
 @cache
 def raw_calls() -> SimpleNamespace:
-    """Return the plain bindings of the GL calls of the caster loop and of pass timing.
+    """Return the plain bindings of the GL calls of the caster loop, pass timing and the block.
 
     Call it with the window's context current, after PyOpenGL was bound to
     the window's platform (:func:`pvshadows.gl.binding.opengl_for`).
@@ -45,7 +45,9 @@ def raw_calls() -> SimpleNamespace:
         ``matrix`` (``glUniformMatrix4fv``), ``bind`` (``glBindVertexArray``),
         ``draw`` (``glDrawElements``), ``multi_draw``
         (``glMultiDrawElements``), ``uniform_int`` (``glUniform1i``), ``query_counter``
-        (``glQueryCounter``) and ``query_result`` (``glGetQueryObjectui64v``).
+        (``glQueryCounter``), ``query_result`` (``glGetQueryObjectui64v``), and
+        ``bind_buffer_base`` (``glBindBufferBase``) and ``buffer_data``
+        (``glBufferData``) for the frame's uniform block.
 
     Examples
     --------
@@ -68,6 +70,8 @@ def raw_calls() -> SimpleNamespace:
         uniform_int=_bound("glUniform1i", _int, _int),
         query_counter=_bound("glQueryCounter", _uint, _uint),
         query_result=_bound("glGetQueryObjectui64v", _uint, _uint, _uint64_p),
+        bind_buffer_base=_bound("glBindBufferBase", _uint, _uint, _uint),
+        buffer_data=_bound("glBufferData", _uint, ctypes.c_ssize_t, ctypes.c_void_p, _uint),
     )
 
 

@@ -7,11 +7,11 @@ read them, so they live below both.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows._cached import cached
 from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.actor_state import ActorState
@@ -94,7 +94,7 @@ class LightSlot:
     vtk_index: int
     kind: LightKind
 
-    @cached_property
+    @cached
     def key(self) -> str:
         """The light's key (:func:`pvshadows.scene.triangles.vtk_id`), read once."""
         return vtk_id(self.light)

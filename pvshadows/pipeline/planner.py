@@ -17,12 +17,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import fields, replace
-from functools import cached_property
 from typing import Any, NamedTuple
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows._cached import cached
 from pvshadows.model.plan import (
     AUTO_TECHNIQUE,
     SERVES,
@@ -497,24 +497,24 @@ class _Shared:
         #: Reads each light's pose once per pose time (:meth:`PlanMemo.pose`).
         self.pose = memo.pose
 
-    @cached_property
+    @cached
     def every_actor(self) -> _Reached:
         """What a point light or a sun reaches: every actor."""
         snapshot = self.snapshot
         return _Reached(None, snapshot.every_receiver, snapshot.casters, snapshot.casters_box)
 
-    @cached_property
+    @cached
     def seen(self) -> list[ActorState]:
         """The receivers the camera sees."""
         receivers = self.snapshot.receivers
         return [r for r, shown in zip(receivers, self.in_view.every, strict=True) if shown]
 
-    @cached_property
+    @cached
     def only_a_plane(self) -> bool:
         """Whether the only receiver is one plane."""
         return sole_plane(self.snapshot.receivers) is not None
 
-    @cached_property
+    @cached
     def plane(self) -> PlaneChoice:
         """The receiving plane of planar lights."""
         return choose_plane(self.snapshot.receivers)

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import cached_property
 from itertools import count
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows._cached import cached
 from pvshadows.geometry.transforms import translation
 from pvshadows.scene.triangles import (
     ActorTriangles,
@@ -74,7 +74,7 @@ class ActorState:
     faces_drawn: bool = True
     serial: int = field(default_factory=count().__next__, init=False, repr=False, compare=False)
 
-    @cached_property
+    @cached
     def name(self) -> str:
         """How messages name it: asked once, when first needed (naming reads PyVista's wrappers)."""
         return self.namer(self.actor)
@@ -87,7 +87,7 @@ class ActorState:
         """
         return self._model_matrix
 
-    @cached_property
+    @cached
     def _model_matrix(self) -> np.ndarray:
         matrix = self.matrix @ translation(self.triangles.center)
         matrix.setflags(write=False)
@@ -97,16 +97,16 @@ class ActorState:
         """Return a value that changes when the actor's shadow-casting shape changes."""
         return self._key
 
-    @cached_property
+    @cached
     def _key(self) -> tuple:
         return (vtk_id(self.actor), self.triangles.version, self.matrix.tobytes())
 
-    @cached_property
+    @cached
     def mirrored(self) -> bool:
         """Whether its matrix mirrors it (turns outward-wound triangles inward)."""
         return bool(np.linalg.det(self.matrix[:3, :3]) < 0.0)
 
-    @cached_property
+    @cached
     def cull_side(self) -> str | None:
         """The side of its triangles a depth pass that culls front faces leaves out.
 
@@ -117,7 +117,7 @@ class ActorState:
             return None
         return "back" if self.mirrored else "front"
 
-    @cached_property
+    @cached
     def sheet(self) -> Sheet | None:
         """The plane the actor lies in when it is flat (a ground, a wall), else ``None``.
 

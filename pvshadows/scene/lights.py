@@ -10,11 +10,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from enum import StrEnum
-from functools import cached_property
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows._cached import cached
 
 
 class LightKind(StrEnum):
@@ -80,7 +80,7 @@ class LightPose:
         """Return a hashable value that changes whenever the pose changes (built once)."""
         return self._key
 
-    @cached_property
+    @cached
     def _key(self) -> tuple:
         return (self.kind, *self.position.tolist(), *self.direction.tolist(), self.cone_angle)
 

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import cached_property
 from typing import Any
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows._cached import cached
 from pvshadows.scene.actor_state import ActorState, Sheet
 from pvshadows.scene.culling import box_around
 
@@ -94,7 +94,7 @@ class Snapshot:
         parent = self.parent
         return None if parent is None else parent.__dict__.pop(name, None)
 
-    @cached_property
+    @cached
     def _role_rows(self) -> tuple[np.ndarray, np.ndarray]:
         """Each actor's row in :attr:`casters` and in :attr:`receivers` (-1 when not one)."""
         kept = self._inherited("_role_rows")
@@ -104,7 +104,7 @@ class Snapshot:
         receiving = np.array([a.receiver for a in self.actors], dtype=bool)
         return _rows_within(casting), _rows_within(receiving)
 
-    @cached_property
+    @cached
     def caster_index(self) -> np.ndarray:
         """Rows of :attr:`actors` that are :attr:`casters`, in order (read-only)."""
         return self._role_index("caster_index", CASTERS)
@@ -117,7 +117,7 @@ class Snapshot:
         index.setflags(write=False)
         return index
 
-    @cached_property
+    @cached
     def every_receiver(self) -> np.ndarray:
         """``(n,)`` read-only, true for each of :attr:`receivers`.
 
@@ -133,7 +133,7 @@ class Snapshot:
         every.setflags(write=False)
         return every
 
-    @cached_property
+    @cached
     def receiver_index(self) -> np.ndarray:
         """Rows of :attr:`actors` that are :attr:`receivers`, in order (read-only)."""
         return self._role_index("receiver_index", RECEIVERS)
@@ -156,12 +156,12 @@ class Snapshot:
         rows = self._role_rows[role]
         return [(int(rows[r]), self.actors[r]) for r in self.replaced if rows[r] >= 0]
 
-    @cached_property
+    @cached
     def casters(self) -> list[ActorState]:
         """Actors that cast shadows."""
         return self._role_list("casters", CASTERS, lambda a: a.caster)
 
-    @cached_property
+    @cached
     def receivers(self) -> list[ActorState]:
         """Actors that show shadows."""
         return self._role_list("receivers", RECEIVERS, lambda a: a.receiver)
@@ -175,12 +175,12 @@ class Snapshot:
             states[row] = state
         return states
 
-    @cached_property
+    @cached
     def caster_sides(self) -> list[str | None]:
         """:attr:`ActorState.cull_side` of :attr:`casters`."""
         return self._caster_values("caster_sides", lambda c: c.cull_side)
 
-    @cached_property
+    @cached
     def caster_keys(self) -> list[tuple]:
         """:meth:`ActorState.key` of :attr:`casters`."""
         return self._caster_values("caster_keys", ActorState.key)
@@ -194,34 +194,34 @@ class Snapshot:
             values[row] = value(state)
         return values
 
-    @cached_property
+    @cached
     def caster_flat(self) -> np.ndarray:
         """Whether each of :attr:`casters` is flat (:attr:`ActorState.sheet`), ``(n,)``."""
         return self._stacked("caster_flat", CASTERS, lambda s: s.sheet is not None, ())
 
-    @cached_property
+    @cached
     def flat_caster_rows(self) -> list[int]:
         """The rows of :attr:`casters` that are flat (:attr:`caster_flat`), in plain ints."""
         return np.flatnonzero(self.caster_flat).tolist()
 
-    @cached_property
+    @cached
     def caster_transmittance(self) -> np.ndarray:
         """:attr:`ActorState.transmittance` of :attr:`casters`, ``(n,)``."""
         return self._stacked("caster_transmittance", CASTERS, lambda s: s.transmittance, ())
 
-    @cached_property
+    @cached
     def some_caster_translucent(self) -> bool:
         """Whether some caster lets light through (:attr:`ActorState.transmittance` above 0)."""
         return bool(self.caster_transmittance.any())
 
-    @cached_property
+    @cached
     def caster_serials(self) -> np.ndarray:
         """:attr:`ActorState.serial` of :attr:`casters`, ``(n,)`` int64."""
         return self._stacked("caster_serials", CASTERS, lambda s: s.serial, ()).astype(
             np.int64, copy=False
         )
 
-    @cached_property
+    @cached
     def caster_triangles(self) -> np.ndarray:
         """Triangle counts of :attr:`casters`, ``(n,)``."""
         return self._stacked("caster_triangles", CASTERS, lambda s: s.triangles.n_triangles, ())
@@ -255,11 +255,11 @@ class Snapshot:
             self._sheet_spans[id(state)] = span
         return span
 
-    @cached_property
+    @cached
     def _sheet_spans(self) -> dict[int, tuple[float, float]]:
         return {}
 
-    @cached_property
+    @cached
     def _heights_by_sheet(self) -> dict[int, tuple[np.ndarray, np.ndarray]]:
         return {}
 
@@ -305,32 +305,32 @@ class Snapshot:
             return tuple(keys)
         return tuple(map(keys.__getitem__, self.caster_rows(casters).tolist()))
 
-    @cached_property
+    @cached
     def actor_bounds(self) -> np.ndarray:
         """World bounds of :attr:`actors`, ``(n, 2, 3)``."""
         return self._stacked("actor_bounds", ALL_ACTORS, lambda s: s.bounds, (2, 3))
 
-    @cached_property
+    @cached
     def caster_bounds(self) -> np.ndarray:
         """World bounds of :attr:`casters`, ``(n, 2, 3)``."""
         return self._stacked("caster_bounds", CASTERS, lambda s: s.bounds, (2, 3))
 
-    @cached_property
+    @cached
     def receiver_bounds(self) -> np.ndarray:
         """World bounds of :attr:`receivers`, ``(n, 2, 3)``."""
         return self._stacked("receiver_bounds", RECEIVERS, lambda s: s.bounds, (2, 3))
 
-    @cached_property
+    @cached
     def receivers_box(self) -> np.ndarray:
         """World bounds of all :attr:`receivers` together, ``(2, 3)`` (NaN when there are none)."""
         return self._box_round("receivers_box", "receiver_bounds", RECEIVERS)
 
-    @cached_property
+    @cached
     def casters_box(self) -> np.ndarray:
         """World bounds of all :attr:`casters` together, ``(2, 3)`` (NaN when there are none)."""
         return self._box_round("casters_box", "caster_bounds", CASTERS)
 
-    @cached_property
+    @cached
     def scene_box(self) -> np.ndarray:
         """World bounds of every caster and receiver together, ``(2, 3)`` (NaN when none is).
 
@@ -346,7 +346,7 @@ class Snapshot:
             [np.minimum(boxes[0][0], boxes[1][0]), np.maximum(boxes[0][1], boxes[1][1])]
         )
 
-    @cached_property
+    @cached
     def scene_size(self) -> float:
         """The diagonal of :attr:`scene_box` (0 when there is no caster or receiver)."""
         low, high = self.scene_box.tolist()
@@ -380,7 +380,7 @@ class Snapshot:
             high = [max(a, b) for a, b in zip(high, new_high, strict=True)]
         return np.array([low, high])
 
-    @cached_property
+    @cached
     def caster_model_columns(self) -> np.ndarray:
         """Model matrices of :attr:`casters` (:meth:`ActorState.model_matrix`), transposed.
 
@@ -402,11 +402,11 @@ class Snapshot:
             stacked[row] = value(state)
         return stacked
 
-    @cached_property
+    @cached
     def _caster_rows(self) -> dict[int, int]:
         return self._rows_by_id("_caster_rows", CASTERS)
 
-    @cached_property
+    @cached
     def _receiver_rows(self) -> dict[int, int]:
         return self._rows_by_id("_receiver_rows", RECEIVERS)
 
@@ -424,7 +424,7 @@ class Snapshot:
             rows[id(state)] = row
         return rows
 
-    @cached_property
+    @cached
     def _subsets(self) -> dict[int, tuple[list[ActorState], np.ndarray]]:
         return {}
 

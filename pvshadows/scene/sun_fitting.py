@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 
+from pvshadows._cached import cached
 from pvshadows.geometry.transforms import look_axes, translation
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.culling import widened_boxes
@@ -62,7 +62,7 @@ class SunFit:
         """Return the ``(4, 4)`` matrix from world to light space (worked out once; read-only)."""
         return self._world_to_light
 
-    @cached_property
+    @cached
     def _world_to_light(self) -> np.ndarray:
         matrix = self.rotation @ translation(-self.origin)
         matrix.setflags(write=False)
@@ -76,7 +76,7 @@ class SunFit:
         """
         return self._light_to_clip
 
-    @cached_property
+    @cached
     def _light_to_clip(self) -> np.ndarray:
         scale = 1.0 / self.half_width
         matrix = np.array(
@@ -89,11 +89,11 @@ class SunFit:
         """Return a value that changes whenever the map's coverage changes."""
         return self._key
 
-    @cached_property
+    @cached
     def _key(self) -> tuple:
         return (self.rotation.tobytes(), self.origin.tobytes(), self.half_width, self.depth)
 
-    @cached_property
+    @cached
     def near_center(self) -> np.ndarray:
         """The centre of the map's near plane, in light axes."""
         return self.rotation[:3, :3] @ self.origin
@@ -250,7 +250,7 @@ class SunActors:
             kept[:] = rotation, (rotation[:3, :3] @ self.pivot).tolist()
         return kept[1]
 
-    @cached_property
+    @cached
     def _offset(self) -> list:
         return [None, None]
 
@@ -286,7 +286,7 @@ class SunActors:
         kept[:] = [square, casters]
         return casters
 
-    @cached_property
+    @cached
     def receiver_extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The receivers' low and high corners across the light, and their far ends."""
         return (
@@ -295,18 +295,18 @@ class SunActors:
             self.receivers[:, 1, 2].copy(),
         )
 
-    @cached_property
+    @cached
     def receivers_across(self) -> tuple[float, float, float, float]:
         """The box holding every receiver across the light: low x, low y, high x, high y."""
         low, high = self.receivers[:, 0, :2].min(axis=0), self.receivers[:, 1, :2].max(axis=0)
         return (*low.tolist(), *high.tolist())
 
-    @cached_property
+    @cached
     def fits_of_whole_scene(self) -> dict[int, tuple[np.ndarray, SunFit | None]]:
         """For a view that holds every receiver, the last rotation and its fit, by resolution."""
         return {}
 
-    @cached_property
+    @cached
     def regions_of_whole_scene(self) -> dict[int, SunRegion | None]:
         """For a view that holds every receiver, :func:`_region_over`'s region by resolution.
 
@@ -315,12 +315,12 @@ class SunActors:
         """
         return {}
 
-    @cached_property
+    @cached
     def casters_of_square(self) -> list:
         """The last square :meth:`casters_in` tested (from the pivot), and its casters."""
         return []
 
-    @cached_property
+    @cached
     def caster_extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The casters' lowest and highest corners across the light, their near and far ends."""
         boxes = self.casters

@@ -8,11 +8,11 @@ so build one per render target from that target's renderer and camera.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows._cached import cached
 from pvshadows.geometry.transforms import from_vtk_matrix
 from pvshadows.scene.culling import clip_planes
 
@@ -110,13 +110,13 @@ class FrameView:
             (to_view, to_clip),
         )
 
-    @cached_property
+    @cached
     def projection(self) -> np.ndarray:
         """View to clip coordinates, depth in [-1, 1] (read from the camera when first asked)."""
         camera, _, aspect = self.stamp[:3]
         return from_vtk_matrix(vtk.vtkCamera.GetProjectionTransformMatrix(camera, aspect, -1, 1))
 
-    @cached_property
+    @cached
     def clip_to_world(self) -> np.ndarray:
         """The inverse of :attr:`world_to_clip` (computed when first asked)."""
         camera, _, aspect = self.stamp[:3]
