@@ -12,6 +12,7 @@ import pyvista as pv
 from OpenGL import contextdata
 
 import pvshadows
+import pvshadows._cached
 from pvshadows.tools.scenes import standard_scene
 
 for technique in sys.argv[1:]:
@@ -22,10 +23,13 @@ for technique in sys.argv[1:]:
     scene.plotter.close()
     del scene
 gc.collect()
+descriptors = (pvshadows._cached.cached,)  # live on classes, as long as the classes
 kept = sorted(
     type(o).__qualname__
     for o in gc.get_objects()
-    if str(type(o).__module__).startswith("pvshadows") and not type(o).__module__.endswith("lights")
+    if str(type(o).__module__).startswith("pvshadows")
+    and not type(o).__module__.endswith("lights")
+    and not isinstance(o, descriptors)
 )
 print(len(kept), len(contextdata.storedPointers), ",".join(sorted(set(kept))))
 """
