@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -74,16 +75,7 @@ class SunFit:
         Light-space x and y within :attr:`half_width` map to [-1, 1]; depth
         is written by the pass itself, so z maps to 0.
         """
-        return self._light_to_clip
-
-    @cached
-    def _light_to_clip(self) -> np.ndarray:
-        scale = 1.0 / self.half_width
-        matrix = np.array(
-            [[scale, 0.0, 0.0, 0.0], [0.0, scale, 0.0, 0.0], [0.0] * 4, [0.0, 0.0, 0.0, 1.0]]
-        )
-        matrix.setflags(write=False)
-        return matrix
+        return _orthographic(self.half_width)
 
     def key(self) -> tuple:
         """Return a value that changes whenever the map's coverage changes."""
@@ -128,6 +120,20 @@ class SunFit:
         across = abs(x_needed - x) <= slack and abs(y_needed - y) <= slack
         along = z <= z_needed and z_needed + needed.depth <= z + self.depth
         return bool(across and along and self.half_width <= 2.0 * needed.half_width)
+
+
+@lru_cache(maxsize=64)
+def _orthographic(half_width: float) -> np.ndarray:
+    """Return the read-only orthographic projection of :meth:`SunFit.light_to_clip`.
+
+    Kept by width: a turning light's fits round the same region share it.
+    """
+    scale = 1.0 / half_width
+    matrix = np.array(
+        [[scale, 0.0, 0.0, 0.0], [0.0, scale, 0.0, 0.0], [0.0] * 4, [0.0, 0.0, 0.0, 1.0]]
+    )
+    matrix.setflags(write=False)
+    return matrix
 
 
 def _light_boxes(rotation: np.ndarray, boxes: np.ndarray) -> np.ndarray:
@@ -181,6 +187,10 @@ def sun_rotation(pose: LightPose) -> np.ndarray:
 #: What a sun's map is fitted round, across and along the light, from the actors' pivot:
 #: low and high corners across, near and far along (:func:`_region_over`).
 SunRegion = tuple[np.ndarray, np.ndarray, float, float]
+#: A sun's map but for its rotation (:func:`_shape_around`): the centre of its near plane
+#: across the light and its near end along it, from the actors' pivot, half its width,
+#: and its depth.
+SunShape = tuple[float, float, float, float, float]
 
 
 @dataclass(frozen=True)
@@ -307,11 +317,12 @@ class SunActors:
         return {}
 
     @cached
-    def regions_of_whole_scene(self) -> dict[int, SunRegion | None]:
-        """For a view that holds every receiver, :func:`_region_over`'s region by resolution.
+    def shapes_of_whole_scene(self) -> dict[int, SunShape | None]:
+        """For a view that holds every receiver, the map's shape round it, by resolution.
 
-        It does not depend on the rotation (within :attr:`slack`): a light
-        turning a little is fitted to it at the cost of a few floats.
+        It is :func:`_shape_around` the region of :func:`_region_over`, and
+        does not depend on the rotation (within :attr:`slack`): a light
+        turning a little is fitted to it at the cost of one small product.
         """
         return {}
 
@@ -424,16 +435,15 @@ def sun_fit(
     x_lo, y_lo, x_hi, y_hi = actors.receivers_across
     if view_x_lo <= x_lo and view_y_lo <= y_lo and view_x_hi >= x_hi and view_y_hi >= y_hi:
         # Every receiver is in the region: the fit is the scene's, whatever the camera.
-        fits, regions = actors.fits_of_whole_scene, actors.regions_of_whole_scene
+        fits, shapes = actors.fits_of_whole_scene, actors.shapes_of_whole_scene
         kept = fits.get(resolution)
         if kept is None or kept[0] is not rotation:
-            if resolution not in regions:
+            if resolution not in shapes:
                 view = np.array([x_lo, y_lo]), np.array([x_hi, y_hi])
-                regions[resolution] = _region_over(actors, *view, None)
-            region = regions[resolution]
-            fit = (
-                None if region is None else _fit_around(rotation, *region, resolution, actors.pivot)
-            )
+                region = _region_over(actors, *view, None)
+                shapes[resolution] = None if region is None else _shape_around(*region, resolution)
+            shape, pivot = shapes[resolution], actors.pivot
+            fit = None if shape is None else _fit_of_shape(rotation, shape, resolution, pivot)
             kept = fits[resolution] = (rotation, fit)
         return kept[1]
     receiver_lo, receiver_hi, _ = actors.receiver_extents
@@ -443,7 +453,9 @@ def sun_fit(
     if not visible.any():
         return None
     region = _region_over(actors, lo[visible].min(axis=0), hi[visible].max(axis=0), visible)
-    return None if region is None else _fit_around(rotation, *region, resolution, actors.pivot)
+    if region is None:
+        return None
+    return _fit_of_shape(rotation, _shape_around(*region, resolution), resolution, actors.pivot)
 
 
 def _region_over(
@@ -469,36 +481,40 @@ def _region_over(
     return fit_lo, fit_hi, near, far
 
 
-def _fit_around(
-    rotation: np.ndarray,
-    fit_lo: np.ndarray,
-    fit_hi: np.ndarray,
-    near: float,
-    far: float,
-    resolution: int,
-    pivot: np.ndarray | None = None,
-) -> SunFit:
-    """Return the map holding a region across the light (light axes), ``near`` to ``far`` along.
+def _shape_around(
+    fit_lo: np.ndarray, fit_hi: np.ndarray, near: float, far: float, resolution: int
+) -> SunShape:
+    """Return the map's shape round a region across the light, ``near`` to ``far`` along.
 
-    The region is measured from ``pivot`` (from the world's origin without
-    one). Its size rounded up to one of ``SIZE_STEPS_PER_OCTAVE`` per octave,
-    its centre snapped to its texels, its depths to a sixteenth of their range.
+    Its size rounded up to one of ``SIZE_STEPS_PER_OCTAVE`` per octave, its
+    centre snapped to its texels, its depths to a sixteenth of their range.
     """
     size = max(float((fit_hi - fit_lo).max()), 1e-30)
     size = 2.0 ** (math.ceil(math.log2(size) * SIZE_STEPS_PER_OCTAVE) / SIZE_STEPS_PER_OCTAVE)
     texel = size / (resolution - 2 * MARGIN_TEXELS)
     # Python's round, like numpy's, rounds halves to even.
-    center = [
+    center_x, center_y = (
         round(0.5 * (lo + hi) / texel) * texel
         for lo, hi in zip(fit_lo.tolist(), fit_hi.tolist(), strict=True)
-    ]
+    )
     step = 2.0 ** math.ceil(math.log2(max(far - near, 1e-30))) / 16.0
     near = math.floor(near / step) * step - step
     far = math.ceil(far / step) * step + step
-    origin = rotation[:3, :3].T @ np.array([center[0], center[1], near])
+    return center_x, center_y, near, texel * resolution / 2.0, far - near
+
+
+def _fit_of_shape(
+    rotation: np.ndarray, shape: SunShape, resolution: int, pivot: np.ndarray | None = None
+) -> SunFit:
+    """Return the map of ``shape`` looking along ``rotation``.
+
+    The shape is measured from ``pivot`` (from the world's origin without one).
+    """
+    center_x, center_y, near, half_width, depth = shape
+    origin = rotation[:3, :3].T @ np.array([center_x, center_y, near])
     if pivot is not None:
         origin += pivot
-    return SunFit(rotation, origin, texel * resolution / 2.0, far - near, resolution)
+    return SunFit(rotation, origin, half_width, depth, resolution)
 
 
 def sun_fit_over_both(kept: SunFit, needed: SunFit) -> SunFit | None:
@@ -550,10 +566,10 @@ def sun_fit_over_both(kept: SunFit, needed: SunFit) -> SunFit | None:
         his.append((x + half, y + half))
         nears.append(z)
         fars.append(z + fit.depth)
-    both = _fit_around(
-        kept.rotation, np.min(los, axis=0), np.max(his, axis=0), min(nears), max(fars),
-        kept.resolution,
-    )  # fmt: skip
+    shape = _shape_around(
+        np.min(los, axis=0), np.max(his, axis=0), min(nears), max(fars), kept.resolution
+    )
+    both = _fit_of_shape(kept.rotation, shape, kept.resolution)
     one_step = 2.0 ** (1.0 / SIZE_STEPS_PER_OCTAVE) * (1.0 + 1e-9)
     if both.half_width > one_step * needed.half_width:
         return None
