@@ -106,11 +106,12 @@ class LightPose:
         >>> down.degrees_from(aside)
         90.0
         """
-        # Unit three-vectors in plain floats: numpy's calls cost more than the sums.
-        mine, theirs = self.direction.tolist(), other.direction.tolist()
-        if mine == theirs:
+        # Unit three-vectors in plain floats, written out: numpy's calls, and a
+        # generator's, cost more than the sums.
+        (ax, ay, az), (bx, by, bz) = self.direction.tolist(), other.direction.tolist()
+        if ax == bx and ay == by and az == bz:
             return 0.0  # not the few ulps of arccos near 1
-        cosine = sum(a * b for a, b in zip(mine, theirs, strict=True))
+        cosine = ax * bx + ay * by + az * bz
         return math.degrees(math.acos(max(-1.0, min(1.0, cosine))))
 
     def homogeneous(self) -> np.ndarray:

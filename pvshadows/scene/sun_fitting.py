@@ -8,6 +8,7 @@ alone never moves shadow edges. All of it is computed in double precision.
 from __future__ import annotations
 
 import math
+import operator
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -246,7 +247,7 @@ class SunActors:
             return True
         # The angle of the rotation from one to the other: trace(A Bᵀ) = 1 + 2 cos(angle).
         mine, theirs = rotation[:3, :3].ravel().tolist(), self.rotation[:3, :3].ravel().tolist()
-        trace = sum(a * b for a, b in zip(mine, theirs, strict=True))
+        trace = sum(map(operator.mul, mine, theirs))  # no generator: it costs more than the sum
         return math.acos(max(-1.0, min(1.0, 0.5 * (trace - 1.0)))) <= self.slack
 
     def offset(self, rotation: np.ndarray) -> list[float]:
