@@ -102,6 +102,12 @@ class ActorState:
         return (vtk_id(self.actor), self.triangles.version, self.matrix.tobytes())
 
     @cached
+    def bounds_center(self) -> tuple[float, float, float]:
+        """The centre of its world bounds, in plain floats."""
+        (x0, y0, z0), (x1, y1, z1) = self.bounds.tolist()
+        return 0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * (z0 + z1)
+
+    @cached
     def mirrored(self) -> bool:
         """Whether its matrix mirrors it (turns outward-wound triangles inward)."""
         return bool(np.linalg.det(self.matrix[:3, :3]) < 0.0)

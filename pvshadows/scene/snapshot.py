@@ -205,6 +205,13 @@ class Snapshot:
         return np.flatnonzero(self.caster_flat).tolist()
 
     @cached
+    def solid_caster_rows(self) -> np.ndarray:
+        """The rows of :attr:`casters` that are not flat, ``(n,)`` (read-only)."""
+        rows = np.flatnonzero(~self.caster_flat)
+        rows.setflags(write=False)
+        return rows
+
+    @cached
     def caster_transmittance(self) -> np.ndarray:
         """:attr:`ActorState.transmittance` of :attr:`casters`, ``(n,)``."""
         return self._stacked("caster_transmittance", CASTERS, lambda s: s.transmittance, ())

@@ -348,15 +348,16 @@ def spot_shadowing_rows(
     Returns
     -------
     numpy.ndarray
-        ``(n,)`` rows of the casters that matter for the fit of the light's map.
+        ``(n,)`` rows of the casters that matter for the fit of the light's map;
+        not to be written to (it may be the snapshot's own).
     """
-    rows = snapshot.caster_rows(casters)
     flat = snapshot.flat_caster_rows
     if not flat:
-        return rows
+        return snapshot.caster_rows(casters)
     every = casters is snapshot.casters
-    flat_here = snapshot.caster_flat if every else snapshot.caster_flat[rows]
-    if not every:
+    rows = None if every else snapshot.caster_rows(casters)
+    flat_here = snapshot.caster_flat if rows is None else snapshot.caster_flat[rows]
+    if rows is not None:
         flat = np.flatnonzero(flat_here).tolist()
     # plain floats for three-vectors: numpy's per-call cost outweighs its speed here
     px, py, pz = pose.position.tolist()
@@ -365,6 +366,10 @@ def spot_shadowing_rows(
         for position in flat
         if not flat_and_lit_above(casters[position], _away(casters[position], px, py, pz), snapshot)
     ]
+    if rows is None and not shadowing:
+        return snapshot.solid_caster_rows  # the same array at every frame
+    if rows is None:
+        rows = snapshot.caster_rows(casters)
     if len(shadowing) == len(flat):
         return rows
     keep = ~flat_here
@@ -375,5 +380,5 @@ def spot_shadowing_rows(
 
 def _away(state: ActorState, px: float, py: float, pz: float) -> tuple[float, float, float]:
     """Return the offset from a light at ``(px, py, pz)`` to the centre of an actor's bounds."""
-    (x0, y0, z0), (x1, y1, z1) = state.bounds.tolist()
-    return 0.5 * (x0 + x1) - px, 0.5 * (y0 + y1) - py, 0.5 * (z0 + z1) - pz
+    cx, cy, cz = state.bounds_center
+    return cx - px, cy - py, cz - pz

@@ -79,6 +79,8 @@ class CubeState(LightState):
     #: The cube arrays' allocations when its textures were last bound
     #: (:meth:`CubemapTechnique.activate`); -1 before.
     bound_after: int = -1
+    #: The measures, snapshot and casters list :attr:`nearest` and :attr:`far` come from.
+    distances_of: tuple | None = None
 
     def release_map(self) -> None:
         """Release the cube."""
@@ -244,10 +246,20 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         state.planned = None
         position, snapshot = plan.pose.position, context.snapshot
         measures = state.measures.of(plan.pose, snapshot).values
-        state.nearest, state.far = distance_range(
-            snapshot.for_casters(measures.near, plan.casters),
-            snapshot.for_casters(measures.far, plan.casters),
-        )
+        # The same measures of the same casters give the same distances: a light moving
+        # within their margin keeps them.
+        taken = state.distances_of
+        if (
+            taken is None
+            or taken[0] is not measures
+            or taken[1] is not snapshot
+            or taken[2] is not plan.casters
+        ):
+            state.nearest, state.far = distance_range(
+                snapshot.for_casters(measures.near, plan.casters),
+                snapshot.for_casters(measures.far, plan.casters),
+            )
+            state.distances_of = (measures, snapshot, plan.casters)
         companion = self._update_companion(plan, context, state, translucent)
         state.drawn = bool(opaque)
         if not opaque:

@@ -82,6 +82,9 @@ class MapState(LightState):
     #: and snapshot they were taken from (compared by identity).
     distances: tuple[float, float] = (0.0, 1.0)
     distances_of: tuple | None = None
+    #: The widest spread of a spot's shadowing casters, with the measures and the
+    #: rows it was taken from (compared by identity).
+    spread_of: tuple | None = None
     #: The pose whose direction a spot's map looks along
     #: (:attr:`pvshadows.scene.measures.Measured.base`).
     fitted_about: LightPose | None = None
@@ -199,7 +202,11 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
                 state.distances_of = (measures, snapshot, range_key[2])
             nearest, far = state.distances
             shadowing = spot_shadowing_rows(pose, inside, snapshot)
-            spread = float(measures.spread[shadowing].max()) if len(shadowing) else None
+            taken = state.spread_of
+            if taken is None or taken[0] is not measures or taken[1] is not shadowing:
+                spread = float(measures.spread[shadowing].max()) if len(shadowing) else None
+                state.spread_of = taken = (measures, shadowing, spread)
+            spread = taken[2]
             kept = (
                 state.range_key is not None
                 and state.range_key[:2] == range_key[:2]
