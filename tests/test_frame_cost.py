@@ -949,3 +949,30 @@ def test_a_dragged_spot_light_keeps_its_casters_distances_while_their_measures_h
     assert len({id(d) for d in distances}) == len({id(a) for a in abouts}) <= 3
     assert len(projections) == 12
     assert pl.shadows.measure(scene.light).misclassified <= 0.005
+
+
+@pytest.mark.parametrize("light", ["point", "spot", "directional"])
+def test_a_dragged_light_gathers_its_casters_once_and_keeps_its_shadows_right(light):
+    """Each move draws the light's map again, multiplying the same gathered casters by
+    its new view (a point light's cube also keeps its casters' distances while their
+    measures hold); the shadows match ray casting."""
+    scene = standard_scene(window_size=(240, 180), light=light)
+    pl = scene.plotter
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    technique = pl.shadows._renderers[0]._techniques["cubemap" if light == "point" else "map"]
+    (state,) = technique._states.values()
+    gathered, drawn = technique.drawn_rows.gathered, technique.casters_drawn
+    position = np.array(scene.light.position)
+    ranges = []
+    for step in range(1, 9):
+        scene.light.position = np.add(position, (0.005 * step, 0.0, 0.0))
+        draw(pl)
+        assert pl.shadows.last_frame.passes_run >= 1
+        if light == "point":
+            ranges.append(state.distances_of)
+    assert technique.casters_drawn - drawn >= 8 * 3
+    assert technique.drawn_rows.gathered - gathered <= 1
+    if light == "point":
+        assert len({id(taken) for taken in ranges}) <= 2
+    assert pl.shadows.measure(scene.light).misclassified <= 0.005

@@ -12,6 +12,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.capabilities import image_copies_supported
+from pvshadows.gl.caster_batch import CasterBatch
 from pvshadows.gl.caster_draws import CasterDraws
 from pvshadows.gl.transmittance_textures import TransmittanceTexture
 from pvshadows.model.plan import Cast
@@ -68,50 +69,101 @@ StateT = TypeVar("StateT", bound=LightState)
 PassT = TypeVar("PassT", bound=Releasable)
 
 
-def caster_draws(
-    casters: list[ActorState],
-    world_to_light: np.ndarray,
-    snapshot: Snapshot,
-    buffers: ActorBuffers,
-    settings: ShadowSettings,
-) -> CasterDraws:
-    """Return what a depth pass draws of some casters of a snapshot, in one batched product.
+#: Lists of casters whose gathered rows :class:`DrawnRows` keeps at most.
+KEPT_DRAWN_LISTS = 64
 
-    Parameters
-    ----------
-    casters : list of ActorState
-        The casters to draw, all of ``snapshot``.
-    world_to_light : numpy.ndarray
-        ``(4, 4)`` world to the light's space.
-    snapshot : Snapshot
-        This frame's actors: their stacked model matrices.
-    buffers : ActorBuffers
-        The casters' triangles on the GPU.
-    settings : ShadowSettings
-        The light's settings: with ``cull_front=True`` each caster's
-        :attr:`~pvshadows.scene.actor_state.ActorState.cull_side` is culled.
 
-    Returns
-    -------
-    CasterDraws
-        Their buffers, ``world_to_light @ model_matrix``, sides to cull and
-        rows in the snapshot's batch of small casters.
+class DrawnRows:
+    """What depth passes draw of lists of casters, gathered once per list and snapshot.
+
+    A light drawn again, its casters the same list on the same snapshot (it
+    moved, the camera did), multiplies only their matrices by its new view;
+    their buffers, model matrices, sides to cull and batch rows are gathered
+    once. The latest :data:`KEPT_DRAWN_LISTS` lists are kept.
+
+    Examples
+    --------
+    >>> from pvshadows.techniques.per_light import DrawnRows
+    >>> DrawnRows().gathered
+    0
     """
-    every = buffers.of_casters(snapshot)
+
+    def __init__(self) -> None:
+        self._kept: dict[int, tuple] = {}
+        #: Lists gathered since this object was made (a list drawn again is not).
+        self.gathered = 0
+
+    def draws(
+        self,
+        casters: list[ActorState],
+        world_to_light: np.ndarray,
+        snapshot: Snapshot,
+        buffers: ActorBuffers,
+        settings: ShadowSettings,
+    ) -> CasterDraws:
+        """Return what a depth pass draws of some casters of a snapshot, in one batched product.
+
+        Parameters
+        ----------
+        casters : list of ActorState
+            The casters to draw, all of ``snapshot``.
+        world_to_light : numpy.ndarray
+            ``(4, 4)`` world to the light's space.
+        snapshot : Snapshot
+            This frame's actors: their stacked model matrices.
+        buffers : ActorBuffers
+            The casters' triangles on the GPU.
+        settings : ShadowSettings
+            The light's settings: with ``cull_front=True`` each caster's
+            :attr:`~pvshadows.scene.actor_state.ActorState.cull_side` is culled.
+
+        Returns
+        -------
+        CasterDraws
+            Their buffers, ``world_to_light @ model_matrix``, sides to cull and
+            rows in the snapshot's batch of small casters.
+        """
+        every, batch = buffers.of_casters(snapshot), buffers.batch_of(snapshot)
+        kept = self._kept.get(id(casters))
+        if (
+            kept is None
+            or kept[0] is not casters
+            or kept[1] is not snapshot
+            or kept[2] is not every
+            or kept[3] is not batch
+            or kept[4] != settings.cull_front
+        ):
+            gathered = _gather(casters, snapshot, every, batch, settings.cull_front)
+            kept = (casters, snapshot, every, batch, settings.cull_front, gathered)
+            if len(self._kept) >= KEPT_DRAWN_LISTS:
+                del self._kept[next(iter(self._kept))]
+            self._kept[id(casters)] = kept
+            self.gathered += 1
+        drawn, columns, culls, in_batch = kept[5]
+        # Every caster's world_to_light @ model, transposed, in one product of 2-D arrays.
+        transposed = (columns.reshape(-1, 4) @ world_to_light.T).reshape(-1, 4, 4)
+        return CasterDraws(drawn, transposed.transpose(0, 2, 1), culls, batch, in_batch)
+
+
+def _gather(
+    casters: list[ActorState],
+    snapshot: Snapshot,
+    every: list,
+    batch: CasterBatch | None,
+    cull_front: bool,
+) -> tuple[list, np.ndarray, list[str | None], np.ndarray | None]:
+    """Return the casters' buffers, model matrices' columns, sides to cull and batch rows."""
     rows = None if casters is snapshot.casters else snapshot.caster_rows(casters).tolist()
     drawn = every if rows is None else [every[row] for row in rows]
     columns = snapshot.caster_model_columns
     if rows is not None:
         columns = columns[rows]
-    # Every caster's world_to_light @ model, transposed, in one product of 2-D arrays.
-    transposed = (columns.reshape(-1, 4) @ world_to_light.T).reshape(-1, 4, 4)
     culls: list[str | None] = [None] * len(casters)
-    if settings.cull_front:  # only then: finding whether a caster is closed reads its triangles
+    if cull_front:  # only then: finding whether a caster is closed reads its triangles
         sides = snapshot.caster_sides
         culls = sides if rows is None else [sides[row] for row in rows]
-    batch = buffers.batch_of(snapshot)
     in_batch = None if batch is None else batch.rows if rows is None else batch.rows[rows]
-    return CasterDraws(drawn, transposed.transpose(0, 2, 1), culls, batch, in_batch)
+    return drawn, columns, culls, in_batch
 
 
 class PerLightMaps(ABC, Generic[StateT, PassT]):
@@ -140,6 +192,8 @@ class PerLightMaps(ABC, Generic[StateT, PassT]):
         self._still_maps = image_copies_supported(opengl_for(window))
         #: Casters handed to the depth passes since this object was made.
         self.casters_drawn = 0
+        #: What the depth passes draw of each list of casters, gathered once per snapshot.
+        self.drawn_rows = DrawnRows()
 
     def _still_casters(self, make_map: Callable[[], MapT]) -> StillCasters[MapT] | None:
         """Return a new light's :class:`StillCasters`, ``None`` where maps cannot be copied."""
@@ -165,7 +219,8 @@ class PerLightMaps(ABC, Generic[StateT, PassT]):
         serials = snapshot.for_casters(snapshot.caster_serials, casters)
         for step in depth_steps(still, key[:-1], casters, key[-1], serials, target):
             self.casters_drawn += len(step.casters)
-            yield step, caster_draws(step.casters, world_to_light, snapshot, buffers, settings)
+            draws = self.drawn_rows.draws(step.casters, world_to_light, snapshot, buffers, settings)
+            yield step, draws
 
     def _lookup_shading(
         self,
