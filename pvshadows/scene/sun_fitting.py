@@ -246,8 +246,8 @@ class SunActors:
         if rotation is self.rotation:
             return True
         # The angle of the rotation from one to the other: trace(A Bᵀ) = 1 + 2 cos(angle).
-        mine, theirs = rotation[:3, :3].ravel().tolist(), self.rotation[:3, :3].ravel().tolist()
-        trace = sum(map(operator.mul, mine, theirs))  # no generator: it costs more than the sum
+        mine = rotation[:3, :3].ravel().tolist()
+        trace = sum(map(operator.mul, mine, self._rotation_entries))  # no generator: it costs more
         return math.acos(max(-1.0, min(1.0, 0.5 * (trace - 1.0)))) <= self.slack
 
     def offset(self, rotation: np.ndarray) -> list[float]:
@@ -260,6 +260,10 @@ class SunActors:
         if kept[0] is not rotation:
             kept[:] = rotation, (rotation[:3, :3] @ self.pivot).tolist()
         return kept[1]
+
+    @cached
+    def _rotation_entries(self) -> list[float]:
+        return self.rotation[:3, :3].ravel().tolist()
 
     @cached
     def _offset(self) -> list:
@@ -293,7 +297,9 @@ class SunActors:
         inside = np.all(boxes[:, 1, :2] >= center - half, axis=1) & np.all(
             boxes[:, 0, :2] <= center + half, axis=1
         )
-        casters = [caster for caster, keep in zip(snapshot.casters, inside, strict=True) if keep]
+        # Made by the snapshot, the list knows its rows (the snapshot's own list when it
+        # holds every caster): what is gathered for it later costs no lookup per caster.
+        casters = snapshot.casters_at(np.flatnonzero(inside))
         kept[:] = [square, casters]
         return casters
 
