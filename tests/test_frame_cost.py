@@ -945,7 +945,7 @@ def test_a_dragged_spot_light_keeps_its_casters_distances_while_their_measures_h
         assert pl.shadows.last_frame.passes_run == 1
         abouts.append(state.fitted_about)
         projections.add(state.light_to_clip.tobytes())
-        distances.append(state.distances)
+        distances.append(state.distances.range)
     assert len({id(d) for d in distances}) == len({id(a) for a in abouts}) <= 3
     assert len(projections) == 12
     assert pl.shadows.measure(scene.light).misclassified <= 0.005
@@ -970,7 +970,7 @@ def test_a_dragged_light_gathers_its_casters_once_and_keeps_its_shadows_right(li
         draw(pl)
         assert pl.shadows.last_frame.passes_run >= 1
         if light == "point":
-            ranges.append(state.distances_of)
+            ranges.append(state.distances.range)
     assert technique.casters_drawn - drawn >= 8 * 3
     assert technique.drawn_rows.gathered - gathered <= 1
     if light == "point":

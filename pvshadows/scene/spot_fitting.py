@@ -366,9 +366,9 @@ def spot_shadowing_rows(
         for position in flat
         if not flat_and_lit_above(casters[position], _away(casters[position], px, py, pz), snapshot)
     ]
-    if rows is None and not shadowing:
-        return snapshot.solid_caster_rows  # the same array at every frame
     if rows is None:
+        if not shadowing:
+            return snapshot.solid_caster_rows  # the same array at every frame
         rows = snapshot.caster_rows(casters)
     if len(shadowing) == len(flat):
         return rows

@@ -36,8 +36,11 @@ from pvshadows.model.plan import Cast
 from pvshadows.model.report import PassReport
 from pvshadows.passes.cube_depth import CubeDepthPass
 from pvshadows.passes.transmittance import TranslucentCaster
+from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.measures import CasterMeasureCache
+from pvshadows.scene.snapshot import Snapshot
+from pvshadows.scene.spot_fitting import ConeMeasures
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
@@ -56,6 +59,82 @@ from pvshadows.techniques.translucent import (
 AT_ONCE = 1 << 30
 #: The least far distance of a cube: depths divided by it stay finite in float32.
 SMALLEST_FAR = float(np.finfo(np.float32).tiny) * 1e6
+
+
+class KeptDistances:
+    """A light's nearest and farthest caster distances (:func:`distance_range`), kept.
+
+    The same measures of the same casters on the same snapshot give the
+    same distances: a light moving within its measures' margin
+    (:class:`~pvshadows.scene.measures.CasterMeasureCache`) keeps them. The
+    measures and the snapshot are compared by identity, the casters by
+    their keys.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pyvista as pv
+    >>> from pvshadows.geometry.transforms import boxes_from_origin
+    >>> from pvshadows.scene.reader import SceneReader
+    >>> from pvshadows.techniques.cubemap import CubeMeasures, KeptDistances
+    >>> pl = pv.Plotter(off_screen=True)
+    >>> _ = pl.add_mesh(pv.Cube(center=(3, 0, 0)))
+    >>> snapshot = SceneReader(lambda actor: "a cube").read(pl.renderer)
+    >>> measures = CubeMeasures(*boxes_from_origin(snapshot.caster_bounds))
+    >>> kept, keys = KeptDistances(), snapshot.keys_of(snapshot.casters)
+    >>> first = kept.of(measures, snapshot, snapshot.casters, keys)
+    >>> round(first[0], 3), round(first[1], 3)  # 2.5 and 1.01 * sqrt(3.5² + 0.5² + 0.5²)
+    (2.5, 3.606)
+    >>> kept.of(measures, snapshot, snapshot.casters, keys) is first, kept.taken
+    (True, 1)
+    """
+
+    def __init__(self) -> None:
+        self._source: tuple | None = None
+        #: The distances last worked out: ``(nearest, far)``.
+        self.range: tuple[float, float] = (math.inf, SMALLEST_FAR)
+        #: Times they were worked out.
+        self.taken = 0
+
+    def of(
+        self,
+        measures: CubeMeasures | ConeMeasures,
+        snapshot: Snapshot,
+        casters: list[ActorState],
+        keys: tuple,
+    ) -> tuple[float, float]:
+        """Return the casters' nearest and farthest distances from the light.
+
+        Parameters
+        ----------
+        measures : CubeMeasures or ConeMeasures
+            The snapshot's casters measured from the light.
+        snapshot : Snapshot
+            This frame's actors.
+        casters : list of ActorState
+            The light's casters, of ``snapshot``.
+        keys : tuple
+            Their keys (:meth:`~pvshadows.scene.snapshot.Snapshot.keys_of`).
+
+        Returns
+        -------
+        tuple of float
+            ``(nearest, far)`` of :func:`distance_range`.
+        """
+        source = self._source
+        if (
+            source is None
+            or source[0] is not measures
+            or source[1] is not snapshot
+            or source[2] != keys
+        ):
+            self.range = distance_range(
+                snapshot.for_casters(measures.near, casters),
+                snapshot.for_casters(measures.far, casters),
+            )
+            self._source = (measures, snapshot, keys)
+            self.taken += 1
+        return self.range
 
 
 @dataclass
@@ -79,8 +158,8 @@ class CubeState(LightState):
     #: The cube arrays' allocations when its textures were last bound
     #: (:meth:`CubemapTechnique.activate`); -1 before.
     bound_after: int = -1
-    #: The measures, snapshot and casters list :attr:`nearest` and :attr:`far` come from.
-    distances_of: tuple | None = None
+    #: Its casters' nearest and farthest distances, kept while their measures hold.
+    distances: KeptDistances = field(default_factory=KeptDistances)
 
     def release_map(self) -> None:
         """Release the cube."""
@@ -246,20 +325,8 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
         state.planned = None
         position, snapshot = plan.pose.position, context.snapshot
         measures = state.measures.of(plan.pose, snapshot).values
-        # The same measures of the same casters give the same distances: a light moving
-        # within their margin keeps them.
-        taken = state.distances_of
-        if (
-            taken is None
-            or taken[0] is not measures
-            or taken[1] is not snapshot
-            or taken[2] is not plan.casters
-        ):
-            state.nearest, state.far = distance_range(
-                snapshot.for_casters(measures.near, plan.casters),
-                snapshot.for_casters(measures.far, plan.casters),
-            )
-            state.distances_of = (measures, snapshot, plan.casters)
+        keys = snapshot.keys_of(plan.casters)
+        state.nearest, state.far = state.distances.of(measures, snapshot, plan.casters, keys)
         companion = self._update_companion(plan, context, state, translucent)
         state.drawn = bool(opaque)
         if not opaque:
@@ -271,7 +338,7 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
             settings.passes,
             settings.cull_front,
             state.far,
-            context.snapshot.keys_of(opaque),
+            keys if opaque is plan.casters else snapshot.keys_of(opaque),
         )
         if key == state.key:
             state.planned = plan

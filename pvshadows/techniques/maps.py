@@ -12,7 +12,7 @@ casters; translucent ones go to its transmittance companion
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -46,7 +46,7 @@ from pvshadows.scene.sun_fitting import (
 )
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext
-from pvshadows.techniques.cubemap import distance_range
+from pvshadows.techniques.cubemap import KeptDistances
 from pvshadows.techniques.per_light import LightState, PerLightMaps
 from pvshadows.techniques.still_casters import StillCasters
 from pvshadows.techniques.translucent import (
@@ -78,10 +78,8 @@ class MapState(LightState):
     range_snapshot: object = None
     #: The far distance and spread a spot's map is fitted to (:func:`spot_fit_holds`).
     fitted_for: tuple[float, float | None] = (0.0, None)
-    #: A spot's nearest and farthest caster distances, and the measures, casters
-    #: and snapshot they were taken from (compared by identity).
-    distances: tuple[float, float] = (0.0, 1.0)
-    distances_of: tuple | None = None
+    #: A spot's nearest and farthest caster distances, kept while their measures hold.
+    distances: KeptDistances = field(default_factory=KeptDistances)
     #: The widest spread of a spot's shadowing casters, with the measures and the
     #: rows it was taken from (compared by identity).
     spread_of: tuple | None = None
@@ -186,21 +184,7 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
             snapshot = context.snapshot
             measured = state.measures.of(pose, snapshot)
             measures = measured.values
-            # The same measures of the same casters give the same distances: a light moving
-            # within their margin keeps them.
-            taken = state.distances_of
-            if (
-                taken is None
-                or taken[0] is not measures
-                or taken[1] is not snapshot
-                or taken[2] != range_key[2]
-            ):
-                state.distances = distance_range(
-                    snapshot.for_casters(measures.near, ranged),
-                    snapshot.for_casters(measures.far, ranged),
-                )
-                state.distances_of = (measures, snapshot, range_key[2])
-            nearest, far = state.distances
+            nearest, far = state.distances.of(measures, snapshot, ranged, range_key[2])
             shadowing = spot_shadowing_rows(pose, inside, snapshot)
             taken = state.spread_of
             if taken is None or taken[0] is not measures or taken[1] is not shadowing:
