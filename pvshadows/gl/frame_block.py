@@ -188,6 +188,8 @@ class FrameBlock:
         self._pointer = ctypes.c_void_p(0)
         #: The entries packed last frame by light index (a light gone since is zeroed).
         self._packed: dict[int, LightEntry] = {}
+        #: The probe and viewport packed last frame.
+        self._header: tuple = ()
         self._sent = b""
         self.uploads = 0
 
@@ -208,7 +210,9 @@ class FrameBlock:
         whenever more are: never fewer than any receiver's block declares.
         Only a block that differs from the last one sent is uploaded, and an
         entry handed again (the same object as last time, for the same light)
-        is not packed again: an entry is not changed once handed over.
+        is not packed again: an entry is not changed once handed over. A
+        frame that hands every entry again, with the last probe and
+        viewport, only binds the buffer.
 
         Parameters
         ----------
@@ -233,6 +237,15 @@ class FrameBlock:
         >>> block.uploads
         1
         """
+        packed = self._packed
+        header = (probe, viewport)
+        if (
+            header == self._header
+            and len(entries) == len(packed)
+            and all(packed.get(index) is entry for index, entry in entries.items())
+        ):  # last frame's block, as sent: bound again only
+            self._bind_base(_UNIFORM_BUFFER, BINDING, self._buffer)
+            return
         capacity = max(8, 2 * (max(entries, default=-1) + 1))
         size = (HEADER_FLOATS + capacity * ENTRY_FLOATS) * 4
         data = self._data
@@ -242,10 +255,10 @@ class FrameBlock:
             # cannot be resized), and the pointer is read once, not a ctypes view per read.
             self._view = (ctypes.c_char * size).from_buffer(data)
             self._pointer = ctypes.c_void_p(ctypes.addressof(self._view))
-            self._packed = {}
+            packed = {}
         _HEADER.pack_into(data, 0, probe, 0, *viewport)
+        self._header = header
         offset, step = HEADER_FLOATS * 4, _ENTRY.size
-        packed = self._packed
         for index in packed.keys() - entries.keys():
             data[offset + index * step : offset + (index + 1) * step] = _EMPTY_ENTRY
         for index, entry in entries.items():
@@ -266,3 +279,4 @@ class FrameBlock:
         if self._buffer:
             self._gl.glDeleteBuffers(1, [self._buffer])
             self._buffer = 0
+        self._header, self._sent = (), b""

@@ -15,7 +15,7 @@ from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthCube, copy_depth
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.report import PassReport
-from pvshadows.passes.gl_state import FaceCulling, depth_only_state
+from pvshadows.passes.gl_state import DepthOnlyState, FaceCulling
 
 #: Every face of a cube, as the bits of a caster's face mask.
 _ALL_FACES = 0b111111
@@ -115,11 +115,11 @@ class CubeDepthPass:
         if passes == "single":
             record = PassReport("cube depth (six faces, one draw)", "run", _faces_text(face_mask))
             records.append(record)
-            with timer.measure(record), depth_only_state(self._window):
+            with timer.measure(record), DepthOnlyState(self._window):
                 _bind(cube, None, under, copy=True)
                 draw_casters(programs(-1), casters, FaceCulling(self._window))
             return records
-        with depth_only_state(self._window):
+        with DepthOnlyState(self._window):
             cull = FaceCulling(self._window)
             for face in range(6):
                 bit = 1 << face

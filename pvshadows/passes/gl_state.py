@@ -10,37 +10,43 @@ from pvshadows import _vtk as vtk
 from pvshadows.gl.binding import opengl_for
 
 
-@contextmanager
-def depth_only_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
-    """Set up GL for writing depth only, and restore VTK's state afterwards.
+class DepthOnlyState:
+    """Set up GL for writing depth only, and restore VTK's state afterwards (a ``with`` block).
 
     Everything goes through ``vtkOpenGLState`` (``Push``/``Pop`` restore the
     framebuffer bindings, viewport, program and the rest), except depth
-    clamping, which VTK does not track and which is switched back off here.
+    clamping, which VTK does not track and which is switched back off on
+    leaving. A class, not a generator: entered once per pass, every frame a
+    light moves.
 
     Parameters
     ----------
     window : vtk.vtkOpenGLRenderWindow
         The window whose context runs the pass.
-
-    Yields
-    ------
-    module
-        ``OpenGL.GL``, for the pass's own calls.
     """
-    gl, state = opengl_for(window), window.GetState()
-    state.Push()
-    try:
-        _enter_map_pass(gl, state)
-        state.vtkglDisable(gl.GL_BLEND)
-        state.vtkglEnable(gl.GL_DEPTH_TEST)
-        state.vtkglDepthFunc(gl.GL_LESS)
-        state.vtkglDepthMask(True)
-        state.vtkglColorMask(False, False, False, False)
-        state.vtkglClearDepth(1.0)
-        yield gl
-    finally:
-        _leave_map_pass(gl, state)
+
+    __slots__ = ("_gl", "_state")
+
+    def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
+        self._gl, self._state = opengl_for(window), window.GetState()
+
+    def __enter__(self) -> None:
+        gl, state = self._gl, self._state
+        state.Push()
+        try:
+            _enter_map_pass(gl, state)
+            state.vtkglDisable(gl.GL_BLEND)
+            state.vtkglEnable(gl.GL_DEPTH_TEST)
+            state.vtkglDepthFunc(gl.GL_LESS)
+            state.vtkglDepthMask(True)
+            state.vtkglColorMask(False, False, False, False)
+            state.vtkglClearDepth(1.0)
+        except BaseException:
+            _leave_map_pass(gl, state)
+            raise
+
+    def __exit__(self, *exc: object) -> None:
+        _leave_map_pass(self._gl, self._state)
 
 
 def _enter_map_pass(gl: ModuleType, state: vtk.vtkOpenGLState) -> None:
@@ -97,7 +103,7 @@ def transmittance_state(window: vtk.vtkOpenGLRenderWindow) -> Iterator:
     counts, both sides of a closed body); blending multiplies the colour by
     the fragment's and keeps the smaller alpha (``glsl/transmittance.frag``);
     the clear colour is 1 (nothing in the way). Depth clamping, as in
-    :func:`depth_only_state`, keeps casters beyond the map's far plane drawn.
+    :class:`DepthOnlyState`, keeps casters beyond the map's far plane drawn.
 
     Parameters
     ----------

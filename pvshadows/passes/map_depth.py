@@ -11,7 +11,7 @@ from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
 from pvshadows.gl.textures import DepthMap, copy_depth
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.report import PassReport
-from pvshadows.passes.gl_state import FaceCulling, depth_only_state
+from pvshadows.passes.gl_state import DepthOnlyState, FaceCulling
 
 
 class MapDepthPass:
@@ -88,7 +88,7 @@ class MapDepthPass:
             return chosen
 
         report = PassReport("map depth", "run", detail)
-        with timer.measure(report), depth_only_state(self._window):
+        with timer.measure(report), DepthOnlyState(self._window):
             if under is None:
                 depth.bind_cleared()
             else:
