@@ -3,7 +3,8 @@
 import numpy as np
 import pyvista as pv
 
-from pvshadows.gl.frame_block import ENTRY_FLOATS, HEADER_FLOATS, FrameBlock, LightEntry
+from pvshadows.gl.binding import opengl_for
+from pvshadows.gl.frame_block import BINDING, ENTRY_FLOATS, HEADER_FLOATS, FrameBlock, LightEntry
 
 
 def _entry(matrix, clip, light_vc, strength):
@@ -69,4 +70,23 @@ def test_a_light_gone_reads_zeros_and_an_unchanged_block_is_sent_once():
     assert block.uploads == 2
     assert not rows[1].any() and rows[2, 52] == 0.25
     assert block.floats[:1].view(np.int32)[0] == -1  # no probe
+    pl.close()
+
+
+def test_the_same_entries_again_pack_nothing_and_the_block_is_bound_again(monkeypatch):
+    pl = pv.Plotter(off_screen=True, window_size=(64, 48))
+    pl.ren_win.Render()
+    gl = opengl_for(pl.ren_win)
+    block = FrameBlock(pl.ren_win)
+    entries = {0: _entry(np.eye(4), None, (0.0, 0.0, 1.0, 1.0), 0.5)}
+    block.update(entries, viewport=(0.0, 0.0, 64.0, 48.0))
+    packed = []
+    monkeypatch.setattr(LightEntry, "floats", lambda entry: packed.append(entry) or [0.0] * 56)
+    gl.glBindBufferBase(gl.GL_UNIFORM_BUFFER, BINDING, 0)  # another user of the binding point
+    block.update(dict(entries), viewport=(0.0, 0.0, 64.0, 48.0))
+    assert packed == [] and block.uploads == 1
+    assert gl.glGetIntegeri_v(gl.GL_UNIFORM_BUFFER_BINDING, BINDING) == block._buffer
+    block.update(entries, viewport=(0.0, 0.0, 32.0, 48.0))  # the viewport changed: packed again
+    assert block.uploads == 2 and packed == []  # the entry itself still is not
+    assert block.floats[4:HEADER_FLOATS].tolist() == [0.0, 0.0, 32.0, 48.0]
     pl.close()
