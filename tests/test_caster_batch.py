@@ -16,6 +16,8 @@ import pyvista as pv
 
 import pvshadows.gl.caster_batch as caster_batch
 from conftest import draw, point_light
+from pvshadows.geometry.transforms import translation
+from pvshadows.techniques.per_light import ADD_FROM, _ModelColumns
 from pvshadows.tools.scenes import spot_light
 
 #: Casters on the grid besides the ground and the floating disc.
@@ -136,3 +138,26 @@ def test_the_batch_is_released_when_few_casters_are_left():
     draw(plotter)
     assert keeper._kept is None
     assert plotter.shadows.measure(light).misclassified <= 0.005
+
+
+def test_a_translating_view_gives_the_products_float32_columns_without_the_product():
+    rng = np.random.default_rng(7)
+    models = rng.normal(size=(ADD_FROM, 4, 4)) * 1e6  # far from the origin, as at 1e6 scale
+    models[:, 3] = (0.0, 0.0, 0.0, 1.0)
+    columns = np.ascontiguousarray(models.transpose(0, 2, 1))
+    kept = _ModelColumns(columns)
+    assert kept._affine is not None
+    turned = translation((-1.5e6, 2.25, -3.3e-3))
+    turned[:3, :3] = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    for view in (translation((-1.5e6, 2.25, -3.3e-3)), turned):
+        moved = kept.to_light(view)
+        expected = np.ascontiguousarray((view @ models).transpose(0, 2, 1), dtype=np.float32)
+        assert moved.dtype == np.float32 and moved.flags.c_contiguous
+        np.testing.assert_array_equal(moved, expected)
+    models[5, 3] = (1e-3, 0.0, 0.0, 1.0)  # a projective matrix: the product, always
+    projective = _ModelColumns(np.ascontiguousarray(models.transpose(0, 2, 1)))
+    assert projective._affine is None
+    view = translation((4.0, 5.0, 6.0))
+    expected = np.ascontiguousarray((view @ models).transpose(0, 2, 1), dtype=np.float32)
+    np.testing.assert_array_equal(projective.to_light(view), expected)
+    assert _ModelColumns(columns[: ADD_FROM - 1])._affine is None  # few: the product

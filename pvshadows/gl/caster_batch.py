@@ -189,7 +189,7 @@ class CasterBatch:
         self,
         program: vtk.vtkShaderProgram,
         rows: np.ndarray,
-        model_to_light: np.ndarray,
+        columns: np.ndarray,
         culls: Sequence[str | None],
         cull: Callable[[str | None], None],
     ) -> None:
@@ -203,8 +203,9 @@ class CasterBatch:
             (``BATCHED`` in the depth passes' vertex stages).
         rows : numpy.ndarray
             ``(k,)`` the batch rows to draw.
-        model_to_light : numpy.ndarray
-            ``(k, 4, 4)`` their buffer coordinates to the light's space.
+        columns : numpy.ndarray
+            ``(k, 4, 4)`` float32: their buffer coordinates to the light's
+            space, by columns (:attr:`~pvshadows.gl.caster_draws.CasterDraws.columns`).
         culls : sequence of {"front", "back", None}
             Their sides not to draw.
         cull : callable
@@ -216,10 +217,10 @@ class CasterBatch:
         chunk = self.chunk
         in_order = len(rows) < 2 or not bool((rows[1:] < rows[:-1]).any())
         if in_order and len(rows) == len(self):  # every row: no gaps to fill
-            columns = np.ascontiguousarray(model_to_light.transpose(0, 2, 1), dtype=np.float32)
+            every = columns
         else:
-            columns = np.zeros((len(self), 4, 4), dtype=np.float32)
-            columns[rows] = model_to_light.transpose(0, 2, 1)
+            every = np.zeros((len(self), 4, 4), dtype=np.float32)
+            every[rows] = columns
         if any(culls):
             sides = np.array([_SIDE_NAMES.index(c) for c in culls], dtype=np.int8)
         else:
@@ -239,7 +240,7 @@ class CasterBatch:
                 continue
             base = first * chunk
             size = min(chunk, len(self) - base)
-            gl.matrix(matrices, size, 0, columns[base:].ctypes.data)
+            gl.matrix(matrices, size, 0, every[base:].ctypes.data)
             gl.uniform_int(base_location, base)
             in_chunk, chunk_sides = rows[start:end], sides[start:end]
             one_side = not chunk_sides.any()

@@ -24,8 +24,9 @@ class CasterDraws:
     ----------
     buffers : sequence of IndexedBuffers
         Each caster's triangles on the GPU.
-    model_to_light : numpy.ndarray
-        ``(n, 4, 4)`` float64: each caster's buffer coordinates to the light's space.
+    columns : numpy.ndarray
+        ``(n, 4, 4)`` float32, C-contiguous: each caster's buffer coordinates
+        to the light's space, by columns (transposed, as GL reads a ``mat4``).
     culls : sequence of {"front", "back", None}
         Each caster's side of its triangles not to draw.
     batch : CasterBatch or None
@@ -35,7 +36,7 @@ class CasterDraws:
     """
 
     buffers: Sequence[IndexedBuffers]
-    model_to_light: np.ndarray
+    columns: np.ndarray
     culls: Sequence[str | None]
     batch: CasterBatch | None = None
     rows: np.ndarray | None = None
@@ -59,7 +60,7 @@ class CasterDraws:
         chosen = np.flatnonzero(keep).tolist()
         return CasterDraws(
             [self.buffers[i] for i in chosen],
-            self.model_to_light[chosen],
+            self.columns[chosen],
             [self.culls[i] for i in chosen],
             self.batch,
             None if self.rows is None else self.rows[chosen],
@@ -110,7 +111,7 @@ def draw_casters(
         draw_one_by_one(programs(False), casters.subset(~batched), cull)
     part = casters if every else casters.subset(batched)
     assert part.batch is not None and part.rows is not None  # batched() said so
-    part.batch.draw(programs(True), part.rows, part.model_to_light, part.culls, cull)
+    part.batch.draw(programs(True), part.rows, part.columns, part.culls, cull)
 
 
 def draw_one_by_one(
@@ -139,8 +140,7 @@ def draw_one_by_one(
     gl = raw_calls()
     location = program.FindUniform("modelToLight")
     position = program.FindAttributeArray("position")
-    columns = np.ascontiguousarray(casters.model_to_light.transpose(0, 2, 1), dtype=np.float32)
-    base = columns.ctypes.data
+    base = casters.columns.ctypes.data
     set_matrix, bind, draw = gl.matrix, gl.bind, gl.draw
     triangles = 0x0004  # GL_TRIANGLES
     side: str | bool | None = False  # not a side: the first caster sets culling

@@ -307,10 +307,15 @@ class Snapshot:
         tuple
             Their keys, in order: equal for the same casters in the same shapes.
         """
-        keys = self.caster_keys
         if casters is self.casters:
-            return tuple(keys)
+            return self._every_caster_key
+        keys = self.caster_keys
         return tuple(map(keys.__getitem__, self.caster_rows(casters).tolist()))
+
+    @cached
+    def _every_caster_key(self) -> tuple:
+        """:attr:`caster_keys` as a tuple, made once (asked for by every map drawn)."""
+        return tuple(self.caster_keys)
 
     @cached
     def actor_bounds(self) -> np.ndarray:

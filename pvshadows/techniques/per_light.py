@@ -71,6 +71,10 @@ PassT = TypeVar("PassT", bound=Releasable)
 
 #: Lists of casters whose gathered rows :class:`DrawnRows` keeps at most.
 KEPT_DRAWN_LISTS = 64
+#: Casters from which a translating view adds to their matrices instead of multiplying
+#: them: fewer are multiplied as fast, and the float32 copy kept for adding would cost a
+#: list gathered at every frame (an actor moving) more than it saves.
+ADD_FROM = 100
 
 
 class DrawnRows:
@@ -79,7 +83,11 @@ class DrawnRows:
     A light drawn again, its casters the same list on the same snapshot (it
     moved, the camera did), multiplies only their matrices by its new view;
     their buffers, model matrices, sides to cull and batch rows are gathered
-    once. The latest :data:`KEPT_DRAWN_LISTS` lists are kept.
+    once. A view that only translates (a spot's or a point light's) moves
+    the affine matrices of :data:`ADD_FROM` or more casters by adding to
+    their last column: the same float32 columns as the product, without
+    it. The latest
+    :data:`KEPT_DRAWN_LISTS` lists are kept.
 
     Examples
     --------
@@ -140,9 +148,54 @@ class DrawnRows:
             self._kept[id(casters)] = kept
             self.gathered += 1
         drawn, columns, culls, in_batch = kept[5]
+        return CasterDraws(drawn, columns.to_light(world_to_light), culls, batch, in_batch)
+
+
+class _ModelColumns:
+    """Casters' model matrices by columns, ready to be taken to a light's space each frame.
+
+    ``columns`` is ``(n, 4, 4)`` float64, each model matrix transposed
+    (:attr:`~pvshadows.scene.snapshot.Snapshot.caster_model_columns`).
+    """
+
+    def __init__(self, columns: np.ndarray) -> None:
+        self.columns = columns
+        affine = (
+            len(columns) >= ADD_FROM
+            and not columns[:, :3, 3].any()
+            and bool((columns[:, 3, 3] == 1.0).all())
+        )
+        # Affine matrices in float32, and their translations in float64 to add to.
+        self._affine = (
+            (np.asarray(columns, dtype=np.float32), np.ascontiguousarray(columns[:, 3, :3]))
+            if affine
+            else None
+        )
+
+    def to_light(self, world_to_light: np.ndarray) -> np.ndarray:
+        """Return each ``world_to_light @ model`` by columns, ``(n, 4, 4)`` float32.
+
+        Worked out in float64 and rounded once, as GL reads it; a
+        translation is added to the models' translations, which gives the
+        product's very numbers.
+        """
+        if self._affine is not None and _translates(world_to_light):
+            still, origins = self._affine
+            moved = still.copy()
+            np.add(origins, world_to_light[:3, 3], out=moved[:, 3, :3], casting="same_kind")
+            return moved
         # Every caster's world_to_light @ model, transposed, in one product of 2-D arrays.
-        transposed = (columns.reshape(-1, 4) @ world_to_light.T).reshape(-1, 4, 4)
-        return CasterDraws(drawn, transposed.transpose(0, 2, 1), culls, batch, in_batch)
+        product = self.columns.reshape(-1, 4) @ world_to_light.T
+        return product.reshape(-1, 4, 4).astype(np.float32)
+
+
+#: The rows of a matrix that only translates: its rotation part and its last row.
+_NO_TURN, _LAST_ROW = np.eye(3).tolist(), [0.0, 0.0, 0.0, 1.0]
+
+
+def _translates(matrix: np.ndarray) -> bool:
+    """Whether a ``(4, 4)`` matrix only translates."""
+    return matrix[3].tolist() == _LAST_ROW and matrix[:3, :3].tolist() == _NO_TURN
 
 
 def _gather(
@@ -151,7 +204,7 @@ def _gather(
     every: list,
     batch: CasterBatch | None,
     cull_front: bool,
-) -> tuple[list, np.ndarray, list[str | None], np.ndarray | None]:
+) -> tuple[list, _ModelColumns, list[str | None], np.ndarray | None]:
     """Return the casters' buffers, model matrices' columns, sides to cull and batch rows."""
     rows = None if casters is snapshot.casters else snapshot.caster_rows(casters).tolist()
     drawn = every if rows is None else [every[row] for row in rows]
@@ -163,7 +216,7 @@ def _gather(
         sides = snapshot.caster_sides
         culls = sides if rows is None else [sides[row] for row in rows]
     in_batch = None if batch is None else batch.rows if rows is None else batch.rows[rows]
-    return drawn, columns, culls, in_batch
+    return drawn, _ModelColumns(columns), culls, in_batch
 
 
 class PerLightMaps(ABC, Generic[StateT, PassT]):
