@@ -218,6 +218,7 @@ class CasterBatch:
         in_order = len(rows) < 2 or not bool((rows[1:] < rows[:-1]).any())
         if in_order and len(rows) == len(self):  # every row: no gaps to fill
             every = columns
+            assert every.dtype == np.float32 and every.flags.c_contiguous  # read by address
         else:
             every = np.zeros((len(self), 4, 4), dtype=np.float32)
             every[rows] = columns

@@ -121,10 +121,11 @@ def draw_one_by_one(
 ) -> None:
     """Draw casters' triangles, each with its own ``mat4`` uniform, in few Python calls.
 
-    Every caster's matrix is converted to float32 columns in one numpy call
-    and set by location with the raw ``glUniformMatrix4fv``; each caster then
-    costs that call, its vertex array's binding, its draw and a culling
-    call when its side differs from the last caster's. Drawing casters one
+    Every caster's float32 columns (:attr:`CasterDraws.columns`, read in
+    place by address) are set by location with the raw
+    ``glUniformMatrix4fv``; each caster then costs that call, its vertex
+    array's binding, its draw and a culling call when its side differs from
+    the last caster's. Drawing casters one
     ``vtkShaderProgram.SetUniformMatrix4x4v`` at a time cost about three
     times as much.
 
@@ -140,7 +141,9 @@ def draw_one_by_one(
     gl = raw_calls()
     location = program.FindUniform("modelToLight")
     position = program.FindAttributeArray("position")
-    base = casters.columns.ctypes.data
+    columns = casters.columns
+    assert columns.dtype == np.float32 and columns.flags.c_contiguous  # read by address
+    base = columns.ctypes.data
     set_matrix, bind, draw = gl.matrix, gl.bind, gl.draw
     triangles = 0x0004  # GL_TRIANGLES
     side: str | bool | None = False  # not a side: the first caster sets culling
