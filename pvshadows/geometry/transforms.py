@@ -16,6 +16,10 @@ import numpy.typing as npt
 from pvshadows import _vtk as vtk
 
 _IDENTITY = np.eye(4)
+#: The last row of an affine matrix.
+AFFINE_LAST_ROW = (0.0, 0.0, 0.0, 1.0)
+#: The rotation part of a matrix that does not turn, row after row.
+_NO_TURN = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
 
 #: Forward and up axes of the six cube faces in GL order (+X, -X, +Y, -Y, +Z, -Z),
 #: chosen so that a face rendered with :func:`cube_face_rotation` lands where a
@@ -378,6 +382,30 @@ def translation(offset: np.ndarray) -> np.ndarray:
     m = _IDENTITY.copy()
     m[:3, 3] = offset
     return m
+
+
+def only_translates(matrix: np.ndarray) -> bool:
+    """Return whether a ``(4, 4)`` matrix only translates: no turn, scale or projection.
+
+    Parameters
+    ----------
+    matrix : numpy.ndarray
+        ``(4, 4)``.
+
+    Returns
+    -------
+    bool
+        Whether it is :func:`translation` of some offset.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.geometry.transforms import only_translates, translation
+    >>> only_translates(translation([1, 2, 3])), only_translates(np.diag([2.0, 1, 1, 1]))
+    (True, False)
+    """
+    (a, b, c, _), (d, e, f, _), (g, h, i, _), last = matrix.tolist()
+    return (a, b, c, d, e, f, g, h, i) == _NO_TURN and tuple(last) == AFFINE_LAST_ROW
 
 
 def to_vtk_matrix(matrix: np.ndarray) -> vtk.vtkMatrix4x4:

@@ -15,15 +15,13 @@ from functools import lru_cache
 import numpy as np
 
 from pvshadows._cached import cached
-from pvshadows.geometry.transforms import look_axes, translation
+from pvshadows.geometry.transforms import AFFINE_LAST_ROW, look_axes, translation
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.culling import widened_boxes
 from pvshadows.scene.fitting import MARGIN_TEXELS, flat_and_lit_above, up_for
 from pvshadows.scene.lights import LightPose
 from pvshadows.scene.snapshot import Snapshot
 
-#: The last row of an affine matrix.
-_LAST_ROW = (0.0, 0.0, 0.0, 1.0)
 #: Sizes of the sun's map are rounded up to steps of 2 ** (1 / SIZE_STEPS_PER_OCTAVE).
 SIZE_STEPS_PER_OCTAVE = 8
 #: Degrees a moving directional light may turn before its fit reads its actors again
@@ -182,7 +180,7 @@ def sun_rotation(pose: LightPose) -> np.ndarray:
     direction = pose.direction.tolist()
     (rx, ry, rz), up, (bx, by, bz) = look_axes(direction, up_for(direction))
     # The camera's x and z turned round (the zeros' signs too, as a negated row has them).
-    return np.array([[-rx, -ry, -rz, -0.0], [*up, 0.0], [-bx, -by, -bz, -0.0], _LAST_ROW])
+    return np.array([[-rx, -ry, -rz, -0.0], [*up, 0.0], [-bx, -by, -bz, -0.0], AFFINE_LAST_ROW])
 
 
 #: What a sun's map is fitted round, across and along the light, from the actors' pivot:

@@ -16,7 +16,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.closed import is_closed_outward
-from pvshadows.geometry.transforms import from_vtk_matrix
+from pvshadows.geometry.transforms import AFFINE_LAST_ROW, from_vtk_matrix
 
 
 @dataclass
@@ -322,7 +322,7 @@ def world_bounds(triangles: ActorTriangles, matrix: np.ndarray) -> np.ndarray:
     """
     lo, hi = triangles.model_bounds()
     rows = matrix.tolist()
-    if rows[3] == [0.0, 0.0, 0.0, 1.0]:
+    if tuple(rows[3]) == AFFINE_LAST_ROW:
         # Affine: each world coordinate takes, term by term, the smaller or larger of
         # the two corners' products, as the eight corners would; in plain floats, as
         # numpy's cost per call outweighs its speed on nine products.

@@ -9,6 +9,7 @@ from typing import ClassVar, Generic, TypeVar
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.transforms import only_translates
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.capabilities import image_copies_supported
@@ -86,8 +87,7 @@ class DrawnRows:
     once. A view that only translates (a spot's or a point light's) moves
     the affine matrices of :data:`ADD_FROM` or more casters by adding to
     their last column: the same float32 columns as the product, without
-    it. The latest
-    :data:`KEPT_DRAWN_LISTS` lists are kept.
+    it. The latest :data:`KEPT_DRAWN_LISTS` lists are kept.
 
     Examples
     --------
@@ -179,7 +179,7 @@ class _ModelColumns:
         translation is added to the models' translations, which gives the
         product's very numbers.
         """
-        if self._affine is not None and _translates(world_to_light):
+        if self._affine is not None and only_translates(world_to_light):
             still, origins = self._affine
             moved = still.copy()
             np.add(origins, world_to_light[:3, 3], out=moved[:, 3, :3], casting="same_kind")
@@ -187,15 +187,6 @@ class _ModelColumns:
         # Every caster's world_to_light @ model, transposed, in one product of 2-D arrays.
         product = self.columns.reshape(-1, 4) @ world_to_light.T
         return product.reshape(-1, 4, 4).astype(np.float32)
-
-
-#: The rows of a matrix that only translates: its rotation part and its last row.
-_NO_TURN, _LAST_ROW = np.eye(3).tolist(), [0.0, 0.0, 0.0, 1.0]
-
-
-def _translates(matrix: np.ndarray) -> bool:
-    """Whether a ``(4, 4)`` matrix only translates."""
-    return matrix[3].tolist() == _LAST_ROW and matrix[:3, :3].tolist() == _NO_TURN
 
 
 def _gather(
