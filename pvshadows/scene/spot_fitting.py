@@ -10,15 +10,14 @@ computed in double precision.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 from typing import NamedTuple
 
 import numpy as np
 
 from pvshadows.geometry.transforms import (
-    look_rotation,
-    perspective,
+    AFFINE_LAST_ROW,
+    look_axes,
     squared_length,
     squared_lengths,
 )
@@ -33,21 +32,17 @@ from pvshadows.scene.snapshot import Snapshot
 REFIT_SLACK = 1.1
 
 
-@dataclass(frozen=True)
-class SpotFit:
+class SpotFit(NamedTuple):
     """A spot light's perspective map.
 
     Attributes
     ----------
-    rotation : numpy.ndarray
-        ``(4, 4)`` rotation from world axes to the map's camera axes.
     light_to_clip : numpy.ndarray
         ``(4, 4)`` from light space (world axes centred on the light) to clip space.
     texel : float
         Size of a texel at the centre of the map, per unit of distance.
     """
 
-    rotation: np.ndarray
     light_to_clip: np.ndarray
     texel: float
 
@@ -101,14 +96,26 @@ def spot_fit(
     1.036
     """
     about = pose if about is None else about
-    rotation = _spot_rotation(about)
+    (rx, ry, rz), (ux, uy, uz), (bx, by, bz) = _axes_along(tuple(about.direction.tolist()))
     turned = 0.0 if about is pose else pose.degrees_from(about)
     cone = math.tan(math.radians(min(pose.cone_angle + turned, 89.0)))
     half = cone if spread is None else min(cone, spread)
     half *= 1.0 + 2.0 * MARGIN_TEXELS / resolution
     fov = 2.0 * math.degrees(math.atan(half))
-    projection = perspective(fov, 1.0, near, far) @ rotation
-    return SpotFit(rotation, projection, float(2.0 * half / resolution))
+    # perspective(fov, 1, near, far) @ rotation, written out in plain floats: each
+    # element has one non-zero term, so it is the product's to the bit (``+ 0.0``
+    # gives the product's +0 where the term is a signed zero).
+    f = 1.0 / math.tan(math.radians(fov) / 2.0)
+    depth, offset = (far + near) / (near - far), 2.0 * far * near / (near - far)
+    projection = np.array(
+        [
+            [f * rx + 0.0, f * ry + 0.0, f * rz + 0.0, 0.0],
+            [f * ux + 0.0, f * uy + 0.0, f * uz + 0.0, 0.0],
+            [depth * bx + 0.0, depth * by + 0.0, depth * bz + 0.0, offset],
+            [0.0 - bx, 0.0 - by, 0.0 - bz, 0.0],
+        ]
+    )
+    return SpotFit(projection, 2.0 * half / resolution)
 
 
 def spot_fit_holds(kept: tuple[float, float | None], needed: tuple[float, float | None]) -> bool:
@@ -152,9 +159,16 @@ def _spot_rotation(pose: LightPose) -> np.ndarray:
 @lru_cache(maxsize=256)
 def _rotation_along(direction: tuple[float, float, float]) -> np.ndarray:
     """Return a spot map's rotation, worked out once per direction (read-only)."""
-    rotation = look_rotation(np.array(direction), up_for(direction))
+    right, up, backward = _axes_along(direction)
+    rotation = np.array([[*right, 0.0], [*up, 0.0], [*backward, 0.0], AFFINE_LAST_ROW])
     rotation.setflags(write=False)
     return rotation
+
+
+@lru_cache(maxsize=256)
+def _axes_along(direction: tuple[float, float, float]) -> tuple[tuple[float, ...], ...]:
+    """Return the rows of a spot map's rotation (:func:`look_axes`), once per direction."""
+    return look_axes(direction, up_for(direction))
 
 
 def box_distances_squared(position: np.ndarray, boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
