@@ -16,10 +16,11 @@ import pyvista as pv
 
 import pvshadows.gl.sampler_units as sampler_units
 from conftest import draw, point_light
+from pvshadows.gl.textures import DepthTexture
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.triangles import vtk_id
 from pvshadows.shaders.library import group_samplers, group_uniforms
-from pvshadows.techniques.filtering import lookup_shading
+from pvshadows.techniques.filtering import FilterBindings, lookup_shading
 from pvshadows.tools.scenes import spot_light
 
 #: How each case enables shadows, and its lights.
@@ -186,3 +187,25 @@ def test_a_group_reads_one_offset_texture_and_other_sample_counts_form_their_own
     packed = group_uniforms([first, third], own)
     assert packed[f"pvs{first.group}Offsets"] == 7
     assert packed[f"pvs{first.group}Depth"] == [1, 2]
+
+
+def test_a_lights_textures_are_named_once_per_map_and_handed_out_in_a_new_dict():
+    pl = pv.Plotter(off_screen=True, window_size=(64, 48))
+    pl.ren_win.Render()
+    filters = FilterBindings(pl.ren_win)
+    depth, other = DepthTexture(pl.ren_win, 16), DepthTexture(pl.ren_win, 16)
+    hard = ShadowSettings(filter="hard")
+    first = filters.samplers(0, hard, depth)
+    first["pvsDepth0"] = None  # a caller's change does not reach the next frame's
+    again = filters.samplers(0, hard, depth)
+    assert again["pvsDepth0"] is filters.samplers(0, hard, depth)["pvsDepth0"]
+    assert again["pvsDepth0"].handle == depth.handle
+    moved = filters.samplers(0, hard, other)  # another map for the same light
+    assert moved["pvsDepth0"].handle == other.handle != depth.handle
+    pcss = filters.samplers(0, ShadowSettings(filter="pcss", light_size=0.1), other)
+    assert sorted(pcss) == ["pvsDepth0", "pvsOffsets0", "pvsRaw0"]
+    assert sorted(filters.samplers(1, hard, other)) == ["pvsDepth1"]
+    filters.release()
+    depth.release()
+    other.release()
+    pl.close()

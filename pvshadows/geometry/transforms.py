@@ -481,4 +481,4 @@ def column_major(matrices: np.ndarray) -> np.ndarray:
     [1.0, 2.0, 3.0]
     """
     m = np.asarray(matrices, dtype=np.float64)
-    return np.ascontiguousarray(np.swapaxes(m, -1, -2), dtype=np.float32).ravel()
+    return m.swapaxes(-1, -2).astype(np.float32, order="C").ravel()

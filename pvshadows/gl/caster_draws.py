@@ -16,7 +16,7 @@ from pvshadows.gl.raw_calls import raw_calls
 _UNSIGNED_INT = 0x1405
 
 
-@dataclass(frozen=True)
+@dataclass(slots=True)
 class CasterDraws:
     """The casters one pass draws, side by side: one object per pass, not one per caster.
 

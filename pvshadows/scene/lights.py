@@ -54,7 +54,7 @@ def light_kind(light: vtk.vtkLight) -> LightKind:
     return LightKind.POINT if vtk.vtkLight.GetConeAngle(light) >= 90.0 else LightKind.SPOT
 
 
-@dataclass(frozen=True)
+@dataclass
 class LightPose:
     """A light in world coordinates, as one frame sees it.
 

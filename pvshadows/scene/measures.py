@@ -38,7 +38,7 @@ MARGIN_OF_NEAREST = 0.02
 TURN_DEGREES = 1.0
 
 
-@dataclass(frozen=True)
+@dataclass(slots=True)
 class Measured(Generic[MeasuresT]):
     """A light's measures of every caster, and where they were taken from.
 

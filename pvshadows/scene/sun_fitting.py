@@ -29,7 +29,7 @@ SIZE_STEPS_PER_OCTAVE = 8
 SUN_TURN_DEGREES = 0.5
 
 
-@dataclass(frozen=True)
+@dataclass
 class SunFit:
     """A directional light's orthographic map.
 

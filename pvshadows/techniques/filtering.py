@@ -102,6 +102,8 @@ class FilterBindings:
         self._window = window
         self._raw: RawDepthView | None = None
         self._offsets: dict[int, DiskOffsets] = {}
+        #: Each light's last textures by its VTK index, with what they were named from.
+        self._named: dict[int, tuple] = {}
 
     def _offsets_for(self, samples: int) -> DiskOffsets:
         count = max(samples, PCSS_SEARCH)
@@ -155,9 +157,29 @@ class FilterBindings:
             The textures (:class:`~pvshadows.gl.sampler_units.TextureBinding`)
             by uniform name: ``pvsDepth{i}``, and the random and PCSS
             filters' ``pvsOffsets{i}`` and ``pvsRaw{i}``; none without a map.
+            A light asking again with the same settings for the same map, whose
+            texture has the same GL name, gets the same bindings (in a new dict).
         """
         if depth is None:
             return {}
+        texture = depth.texture
+        handle = texture.GetHandle()
+        kept = self._named.get(vtk_index)
+        if (
+            kept is not None
+            and kept[0] is depth
+            and kept[1] is texture
+            and kept[2] == handle
+            and kept[3] == settings
+        ):
+            return dict(kept[4])
+        uniforms = self._name(vtk_index, settings, depth)
+        self._named[vtk_index] = (depth, texture, handle, settings, uniforms)
+        return dict(uniforms)
+
+    def _name(
+        self, vtk_index: int, settings: ShadowSettings, depth: DepthTexture | CubeSlot
+    ) -> dict[str, object]:
         i = vtk_index
         depth_name = f"pvsDepth{i}"
         uniforms: dict[str, object] = {depth_name: TextureBinding.of(depth_name, depth.texture)}
@@ -196,3 +218,4 @@ class FilterBindings:
         if self._raw is not None:
             self._raw.release()
             self._raw = None
+        self._named.clear()
