@@ -976,3 +976,20 @@ def test_a_dragged_light_gathers_its_casters_once_and_keeps_its_shadows_right(li
     if light == "point":
         assert len({id(taken) for taken in ranges}) <= 2
     assert pl.shadows.measure(scene.light).misclassified <= 0.005
+
+
+def test_a_light_swapped_for_an_equal_one_is_planned_and_the_old_one_forgotten():
+    scene = standard_scene(window_size=(200, 150), light="spot")
+    pl = scene.plotter
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    twin = scene.light.copy()
+    assert twin == scene.light  # pyvista's lights compare by their settings: not the same light
+    pl.renderer.RemoveLight(scene.light)
+    pl.add_light(twin)
+    draw(pl)
+    # What was kept of the light that left is forgotten, though an equal light took its place.
+    assert list(shadows.memo._plans) == [id(twin)]
+    assert list(shadows.reach._lights) == [vtk_id(twin)]
+    assert pl.shadows.measure(twin).misclassified <= 0.005

@@ -239,13 +239,14 @@ class FrameBlock:
         """
         packed = self._packed
         header = (probe, viewport)
-        if (
-            header == self._header
-            and len(entries) == len(packed)
-            and all(packed.get(index) is entry for index, entry in entries.items())
-        ):  # last frame's block, as sent: bound again only
-            self._bind_base(_UNIFORM_BUFFER, BINDING, self._buffer)
-            return
+        if header == self._header and len(entries) == len(packed):
+            # a loop, not all() over a generator: this runs every frame
+            for index, entry in entries.items():
+                if packed.get(index) is not entry:
+                    break
+            else:  # last frame's block, as sent: bound again only
+                self._bind_base(_UNIFORM_BUFFER, BINDING, self._buffer)
+                return
         capacity = max(8, 2 * (max(entries, default=-1) + 1))
         size = (HEADER_FLOATS + capacity * ENTRY_FLOATS) * 4
         data = self._data

@@ -15,8 +15,6 @@ import warnings
 from collections.abc import Callable
 from pathlib import Path
 
-import numpy as np
-
 from pvshadows import _vtk as vtk
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.buffers import forget_pointer_records
@@ -195,6 +193,7 @@ class RendererShadows:
         light_space: list[LightShading] = []
         self._active = []
         kept, self._kept = self._kept, {}
+        casts = []
         for plan in plans:
             light_report = LightReport(
                 plan.index, plan.kind.value, plan.technique, notes=plan.notes
@@ -203,6 +202,7 @@ class RendererShadows:
             cast = plan.cast
             if cast is None:
                 continue
+            casts.append(cast)
             self._where = plan
             technique = self.technique(cast.technique)
             lit = self._light_frame(technique, cast, context, kept.get(cast.vtk_index))
@@ -215,19 +215,22 @@ class RendererShadows:
             if technique not in self._active:
                 self._active.append(technique)
             uniforms.update(lit.samplers)
-        self._note_impostors(plans, snapshot)
+        impostors = self._impostors(snapshot)
+        if impostors:
+            self._note_impostors(plans, impostors)
         for light_report, plan in zip(report.lights, plans, strict=True):
             light_report.notes = list(plan.notes)
         self._where = "keeping only this frame's maps"
-        casts = [plan.cast for plan in plans if plan.cast is not None]
         for technique in self._techniques.values():
             technique.keep_only(casts)
         if snapshot is not self.snapshot and snapshot.parent is None:
             self._buffers.keep_only(snapshot.actors)
         self._where = "receiver shader edits"
         assert self._block is not None  # made by _start_gl
-        self._block.update(entries, self.probe_index, self._viewport(context, plans))
-        self._apply_edits(snapshot, shadings, uniforms, light_space, view.planes)
+        screen_masks = len(light_space) < len(entries)
+        self._block.update(entries, self.probe_index, self._viewport(context, screen_masks))
+        lit_points = {vtk_id(actor) for actor in impostors} if light_space else set()
+        self._edits.update(snapshot, shadings, uniforms, light_space, lit_points, view.planes)
         assert self._units is not None  # made by _start_gl
         self._units.bind(uniforms)
         park_active_unit(self._window)
@@ -256,26 +259,28 @@ class RendererShadows:
         return LightFrame(passes, shading, entry, samplers)
 
     @staticmethod
-    def _viewport(
-        context: FrameContext, plans: list[LightPlan]
-    ) -> tuple[float, float, float, float]:
+    def _viewport(context: FrameContext, screen_masks: bool) -> tuple[float, float, float, float]:
         """Return where the renderer draws in the window, when some light reads a screen mask."""
-        if all(p.technique in LIGHT_SPACE_TECHNIQUES for p in plans if p.technique is not None):
+        if not screen_masks:
             return (0.0, 0.0, 1.0, 1.0)
         target = context.target()
         (x0, y0), (width, height) = target.origin, target.size
         return (float(x0), float(y0), float(width), float(height))
 
-    def _note_impostors(self, plans: list[LightPlan], snapshot: Snapshot) -> None:
-        """Say under each shadowed light what the actors without triangles do."""
-        names = [
-            self._reader.name_of(actor)
+    def _impostors(self, snapshot: Snapshot) -> list[vtk.vtkActor]:
+        """Return the receiving bystanders VTK lights without triangles (points, lines)."""
+        if not snapshot.bystanders:
+            return []
+        receiving = self._reader.receiving
+        return [
+            actor
             for actor in snapshot.bystanders
-            if self._reader.receiving.get(vtk_id(actor), True) and lit_without_triangles(actor)
+            if receiving.get(vtk_id(actor), True) and lit_without_triangles(actor)
         ]
-        if not names:
-            return
-        listed = ", ".join(names)
+
+    def _note_impostors(self, plans: list[LightPlan], impostors: list[vtk.vtkActor]) -> None:
+        """Say under each shadowed light what the actors without triangles do."""
+        listed = ", ".join(self._reader.name_of(actor) for actor in impostors)
         for plan in plans:
             if plan.technique is None:
                 continue
@@ -331,23 +336,6 @@ class RendererShadows:
         self._kept = {}
         self._context = None
         return troubles
-
-    def _apply_edits(
-        self,
-        snapshot: Snapshot,
-        shadings: list,
-        uniforms: dict,
-        light_space: list,
-        planes: np.ndarray,
-    ) -> None:
-        lit_points = {
-            vtk_id(actor)
-            for actor in snapshot.bystanders
-            if light_space
-            and self._reader.receiving.get(vtk_id(actor), True)
-            and lit_without_triangles(actor)
-        }
-        self._edits.update(snapshot, shadings, uniforms, light_space, lit_points, planes)
 
     def _on_end(self, renderer: vtk.vtkRenderer, event: str) -> None:
         if self.error is not None:

@@ -34,7 +34,7 @@ from pvshadows.model.plan import (
 )
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.cube_passes import cube_passes
-from pvshadows.pipeline.reach import ReachCache
+from pvshadows.pipeline.reach import ReachCache, same_objects
 from pvshadows.pipeline.sight import ViewSight
 from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
 from pvshadows.scene.actor_state import ActorState
@@ -133,6 +133,8 @@ class PlanMemo:
             int, tuple[tuple, LightPlan, int, ViewUse, tuple[ViewSight, object], _Reached | None]
         ] = {}
         self._in_view: tuple[Snapshot, FrameView, ViewSight] | None = None
+        #: The lights of the last :meth:`keep_only`.
+        self._kept_for: list[vtk.vtkLight] = []
 
     def forget(self) -> None:
         """Plan every light again next frame."""
@@ -309,9 +311,12 @@ class PlanMemo:
         seen = (in_view, _view_key(use, in_view))
         self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes), use, seen, reached)
 
-    def keep_only(self, plans: list[LightPlan]) -> None:
-        """Forget the lights that are no longer the renderer's."""
-        alive = {id(plan.light) for plan in plans}
+    def keep_only(self, lights: list[vtk.vtkLight]) -> None:
+        """Forget the lights no longer the renderer's (none if they are the last call's)."""
+        if same_objects(lights, self._kept_for):
+            return
+        self._kept_for = list(lights)
+        alive = {id(light) for light in lights}
         for key in set(self._plans) - alive:
             del self._plans[key]
         for key in set(self._poses) - alive:
@@ -455,9 +460,9 @@ def plan_frame(
         if vtk.vtkLight.GetSwitch(light):
             vtk_index += 1
         plans.append(plan)
-    reach.keep_only({plan.key for plan in plans})
+    reach.keep_only(lights)
     if memo is not None:
-        memo.keep_only(plans)
+        memo.keep_only(lights)
         memo.planned += planned
         if planned:
             memo.made += 1
@@ -630,10 +635,12 @@ class _SeenFrom(NamedTuple):
 
 def _casters_seen_from(pose: LightPose, box: np.ndarray) -> _SeenFrom:
     """Return the sphere around casters' ``(2, 3)`` box: its radius, distance and offset."""
-    # plain floats for three-vectors: numpy's per-call cost outweighs its speed here
+    # Plain floats for three-vectors, written out: numpy's calls, and a generator's, cost
+    # more than the sums.
     lo, hi = box.tolist()
-    centre = [(a + b) / 2.0 for a, b in zip(lo, hi, strict=True)]
-    away = [c - p for c, p in zip(centre, pose.position.tolist(), strict=True)]
+    (lx, ly, lz), (hx, hy, hz) = lo, hi
+    px, py, pz = pose.position.tolist()
+    away = [(lx + hx) / 2.0 - px, (ly + hy) / 2.0 - py, (lz + hz) / 2.0 - pz]
     return _SeenFrom(math.dist(lo, hi) / 2.0, math.hypot(*away), away)
 
 

@@ -20,9 +20,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from pvshadows import _vtk as vtk
 from pvshadows.scene.culling import MANY_LIGHTS, SpotCones, boxes_in_spot, boxes_in_spots
 from pvshadows.scene.lights import LightKind, LightPose
 from pvshadows.scene.snapshot import Snapshot
+from pvshadows.scene.triangles import vtk_id
 
 #: Degrees a spot light's cover is wider than its cone (never past 89.9).
 COVER_DEGREES = 1.0
@@ -129,6 +131,38 @@ def cover_holds(cover: LightPose, pose: LightPose) -> bool:
     return along >= math.hypot(ox, oy, oz) * math.cos(math.radians(cover.cone_angle))
 
 
+def same_objects(first: list, second: list) -> bool:
+    """Tell whether two lists hold the very same objects in the same order.
+
+    Compared by identity: a :class:`pyvista.Light` equals another with the
+    same settings.
+
+    Parameters
+    ----------
+    first, second : list
+        The lists.
+
+    Returns
+    -------
+    bool
+        Whether each item of one is the other's item at the same place.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.pipeline.reach import same_objects
+    >>> light = pv.Light()
+    >>> same_objects([light], [light]), same_objects([light], [pv.Light()])
+    (True, False)
+    """
+    if len(first) != len(second):
+        return False
+    for one, other in zip(first, second, strict=True):
+        if one is not other:
+            return False
+    return True
+
+
 class ReachCache:
     """Remembers, per light, its pose, the snapshot its reach was tested on and the answers.
 
@@ -153,6 +187,8 @@ class ReachCache:
 
     def __init__(self) -> None:
         self._lights: dict[str, _Reached] = {}
+        #: The lights of the last :meth:`keep_only`.
+        self._kept_for: list[vtk.vtkLight] = []
         #: The covers last stacked for a test of many lights at once, and their stack.
         self._cones: tuple[list[LightPose], SpotCones] | None = None
         #: Cone tests run since the cache was made (one per actor and light tested).
@@ -295,15 +331,19 @@ class ReachCache:
         self._lights[light] = _Reached(cover, snapshot, hits, pose.key())
         return hits
 
-    def keep_only(self, lights: set[str]) -> None:
-        """Forget the lights not in ``lights``.
+    def keep_only(self, lights: list[vtk.vtkLight]) -> None:
+        """Forget the lights not in ``lights``; nothing to look at when they are the last call's.
 
         Parameters
         ----------
-        lights : set of str
-            Keys of the lights still planned.
+        lights : list of vtk.vtkLight
+            The lights still planned.
         """
-        gone = set(self._lights) - lights
+        if same_objects(lights, self._kept_for):
+            return  # answers are kept only for these lights, and none was forgotten since
+        self._kept_for = list(lights)
+        alive = {vtk_id(light) for light in lights}
+        gone = set(self._lights) - alive
         for key in gone:
             del self._lights[key]
         if gone:

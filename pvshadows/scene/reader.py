@@ -165,7 +165,10 @@ class SceneReader:
         >>> sorted(reader.read(pl.renderer).changed) == [box.__this__]
         True
         """
-        cache = self._frames.setdefault(vtk_id(renderer), _RendererCache())
+        key = vtk_id(renderer)
+        cache = self._frames.get(key)
+        if cache is None:
+            cache = self._frames[key] = _RendererCache()
         # VTK's own methods, called on the class: PyVista's wrappers check every attribute
         camera = vtk.vtkCamera.GetMTime(vtk.vtkRenderer.GetActiveCamera(renderer))
         props = vtk.vtkRenderer.GetViewProps(renderer).GetMTime()

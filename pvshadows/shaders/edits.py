@@ -47,7 +47,13 @@ _LIT_POINTS = "lit points"
 
 
 def _same_values(a: dict[str, object], b: dict[str, object]) -> bool:
-    return a.keys() == b.keys() and all(_same(value, b[name]) for name, value in a.items())
+    if a.keys() != b.keys():
+        return False
+    # a loop, not all() over a generator: this runs every frame
+    for name, value in a.items():
+        if value is not b[name] and not _same(value, b[name]):
+            return False
+    return True
 
 
 def _same(a: object, b: object) -> bool:
@@ -443,6 +449,8 @@ class ReceiverEdits:
         for key in self._flagged:
             if key in self._edits:
                 self._note_problem(key)
+        if not self._problems:
+            return {}
         return {key: (self._edits[key].actor, why) for key, why in self._problems.items()}
 
     def _forget(self, key: str) -> None:

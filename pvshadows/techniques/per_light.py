@@ -379,9 +379,15 @@ class PerLightMaps(ABC, Generic[StateT, PassT]):
         plans : list of Cast
             This frame's casts.
         """
-        alive = {p.key for p in plans if p.technique == self.name}
-        for key in set(self._states) - alive:
-            self._states.pop(key).release()
+        states = self._states
+        held = 0
+        for plan in plans:  # a count first: most frames release nothing
+            if plan.technique == self.name and plan.key in states:
+                held += 1
+        if held < len(states):
+            alive = {p.key for p in plans if p.technique == self.name}
+            for key in set(states) - alive:
+                states.pop(key).release()
         if len(self._shadings) > 4 * max(len(self._states), 1):
             self._shadings.clear()
 
