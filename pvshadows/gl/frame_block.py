@@ -238,33 +238,22 @@ class FrameBlock:
         1
         """
         packed = self._packed
+        offset, step = HEADER_FLOATS * 4, _ENTRY.size
         header = (probe, viewport)
-        if header == self._header and len(entries) == len(packed):
-            # a loop, not all() over a generator: this runs every frame
+        if header == self._header and entries.keys() == packed.keys():
+            # The same lights, in a block as large as they need: only new entries are packed.
+            # A loop, not all() over a generator: this runs every frame.
+            data, changed = self._data, False
             for index, entry in entries.items():
-                if packed.get(index) is not entry:
-                    break
-            else:  # last frame's block, as sent: bound again only
+                if packed[index] is not entry:
+                    _ENTRY.pack_into(data, offset + index * step, *entry.floats())
+                    changed = True
+            if not changed:  # last frame's block, as sent: bound again only
                 self._bind_base(_UNIFORM_BUFFER, BINDING, self._buffer)
                 return
-        capacity = max(8, 2 * (max(entries, default=-1) + 1))
-        size = (HEADER_FLOATS + capacity * ENTRY_FLOATS) * 4
-        data = self._data
-        if len(data) < size:
-            data = self._data = bytearray(size)
-            # Held: the bytes stay where the pointer says (a bytearray exported to ctypes
-            # cannot be resized), and the pointer is read once, not a ctypes view per read.
-            self._view = (ctypes.c_char * size).from_buffer(data)
-            self._pointer = ctypes.c_void_p(ctypes.addressof(self._view))
-            packed = {}
-        _HEADER.pack_into(data, 0, probe, 0, *viewport)
-        self._header = header
-        offset, step = HEADER_FLOATS * 4, _ENTRY.size
-        for index in packed.keys() - entries.keys():
-            data[offset + index * step : offset + (index + 1) * step] = _EMPTY_ENTRY
-        for index, entry in entries.items():
-            if packed.get(index) is not entry:
-                _ENTRY.pack_into(data, offset + index * step, *entry.floats())
+        else:
+            data = self._fill(entries, probe, viewport)
+            self._header = header
         self._packed = dict(entries)
         # Binding to the indexed point binds the buffer to GL_UNIFORM_BUFFER too, where
         # glBufferData reads it.
@@ -274,6 +263,32 @@ class FrameBlock:
             self._send(_UNIFORM_BUFFER, len(data), self._pointer, _DYNAMIC_DRAW)
             self._sent = sent
             self.uploads += 1
+
+    def _fill(
+        self,
+        entries: Mapping[int, LightEntry],
+        probe: int,
+        viewport: tuple[float, float, float, float],
+    ) -> bytearray:
+        """Pack the header and every entry not packed last time; zero the lights gone."""
+        capacity = max(8, 2 * (max(entries, default=-1) + 1))
+        size = (HEADER_FLOATS + capacity * ENTRY_FLOATS) * 4
+        data, packed = self._data, self._packed
+        if len(data) < size:
+            data = self._data = bytearray(size)
+            # Held: the bytes stay where the pointer says (a bytearray exported to ctypes
+            # cannot be resized), and the pointer is read once, not a ctypes view per read.
+            self._view = (ctypes.c_char * size).from_buffer(data)
+            self._pointer = ctypes.c_void_p(ctypes.addressof(self._view))
+            packed = {}
+        _HEADER.pack_into(data, 0, probe, 0, *viewport)
+        offset, step = HEADER_FLOATS * 4, _ENTRY.size
+        for index in packed.keys() - entries.keys():
+            data[offset + index * step : offset + (index + 1) * step] = _EMPTY_ENTRY
+        for index, entry in entries.items():
+            if packed.get(index) is not entry:
+                _ENTRY.pack_into(data, offset + index * step, *entry.floats())
+        return data
 
     def release(self) -> None:
         """Delete the buffer."""
