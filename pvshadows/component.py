@@ -19,7 +19,7 @@ from pvshadows.model.report import FrameReport
 from pvshadows.model.settings import ShadowSettings, preset, validated
 from pvshadows.pipeline.frame import RendererShadows
 from pvshadows.scene.actor_state import hides_what_is_behind
-from pvshadows.scene.light_kit import casts_by_default
+from pvshadows.scene.light_kit import KeyLights
 from pvshadows.scene.lights import light_kind, light_pose
 from pvshadows.scene.naming import ActorNames
 from pvshadows.scene.planes import require_plane
@@ -66,6 +66,8 @@ class ShadowsComponent:
         self._defaults = ShadowSettings()
         self._per_light: dict[str, ShadowSettings] = {}
         self._lights: set[str] | None = None
+        #: Each renderer's key light, the light that casts by default among the light kit's.
+        self._key_lights = KeyLights()
         self._names = ActorNames(plotter)
         self._reader = SceneReader(self._actor_name)
         self._renderers: list[RendererShadows] = []
@@ -189,6 +191,7 @@ class ShadowsComponent:
         for renderer in self._renderers:
             renderer.detach()
         self._renderers = []
+        self._key_lights = KeyLights()
         if self._plotter.render_window is not None:
             self._plotter.render()
 
@@ -566,7 +569,7 @@ class ShadowsComponent:
         key = vtk_id(light)
         if self._lights is not None and key not in self._lights:
             return None
-        if self._lights is None and not casts_by_default(light, renderer):
+        if self._lights is None and not self._key_lights.casts_by_default(light, renderer):
             return None
         return self._per_light.get(key, self._defaults)
 

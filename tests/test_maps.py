@@ -195,6 +195,37 @@ def test_light_kit_key_light_casts_and_the_others_opt_in():
         assert pl.shadows.measure(light).misclassified <= 0.02
 
 
+def test_the_light_kit_light_that_casts_follows_the_brightest_camera_light():
+    pl = pv.Plotter(off_screen=True, window_size=[300, 200])
+    pl.add_mesh(pv.Plane(i_size=6, j_size=6))
+    pl.add_mesh(pv.Sphere(center=(0, 0, 1)))
+    pl.shadows.enable(**HARD)
+    draw(pl)
+    _, key, fill, *_ = pl.renderer.lights
+    keys = pl.shadows._key_lights
+    searches = keys.searches
+    for _ in range(3):
+        pl.camera.Azimuth(10)
+        draw(pl)
+    assert keys.searches == searches  # the lights did not change: no search
+    fill.intensity = 2 * key.intensity
+    draw(pl)
+    assert [r.technique for r in pl.shadows.last_frame.lights] == [None, None, "map", None, None]
+    fill.intensity = key.intensity / 4  # dimmer than the key light again, and than a back light
+    key.switch_off()
+    draw(pl)
+    casting = [r.technique == "map" for r in pl.shadows.last_frame.lights]
+    back = max(pl.renderer.lights[3:], key=lambda light: light.intensity)
+    assert back.intensity > fill.intensity
+    assert casting == [light is back for light in pl.renderer.lights]
+    assert keys.searches == searches + 2
+    assert pl.shadows.measure(back).misclassified <= 0.02
+    fill.intensity = 2 * key.intensity
+    draw(pl)
+    assert [r.technique for r in pl.shadows.last_frame.lights][1:3] == [None, "map"]
+    assert pl.shadows.measure(fill).misclassified <= 0.02
+
+
 def test_technique_map_refuses_point_lights():
     pl = pv.Plotter(off_screen=True)
     bulb = point_light((0, 0, 3))

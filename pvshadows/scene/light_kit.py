@@ -46,14 +46,18 @@ def key_light(renderer: vtk.vtkRenderer) -> vtk.vtkLight | None:
     >>> key_light(pl.renderer).GetIntensity()
     0.75
     """
-    best = None
-    lights = renderer.GetLights()
+    # VTK's own methods, called on the class: PyVista's wrappers check every attribute, and
+    # this runs for each camera light at every frame.
+    best, brightest = None, 0.0
+    lights = vtk.vtkRenderer.GetLights(renderer)
+    item = lights.GetItemAsObject  # not GetNextItem: callers may be traversing
     for index in range(lights.GetNumberOfItems()):
-        light = lights.GetItemAsObject(index)  # not GetNextItem: callers may be traversing
-        if not (light.LightTypeIsCameraLight() and light.GetSwitch()):
+        light = item(index)
+        if not (vtk.vtkLight.LightTypeIsCameraLight(light) and vtk.vtkLight.GetSwitch(light)):
             continue
-        if best is None or light.GetIntensity() > best.GetIntensity():
-            best = light
+        intensity = vtk.vtkLight.GetIntensity(light)
+        if best is None or intensity > brightest:
+            best, brightest = light, intensity
     return best
 
 
@@ -81,10 +85,74 @@ def casts_by_default(light: vtk.vtkLight, renderer: vtk.vtkRenderer) -> bool:
     >>> [casts_by_default(light, pl.renderer) for light in pl.renderer.lights]
     [True, True, False, False, False]
     """
-    if not light.LightTypeIsCameraLight():
+    if not vtk.vtkLight.LightTypeIsCameraLight(light):
         return True
     key = key_light(renderer)
     return key is not None and vtk_id(key) == vtk_id(light)
+
+
+class KeyLights:
+    """Each renderer's key light (:func:`key_light`), looked for again only when its lights changed.
+
+    A frame asks of each light whether it casts by default: with the light
+    kit, four lights follow the camera and each would look for the key
+    light among all of them. The modification times of the renderer's
+    camera lights, and of its list of lights, tell when the answer may have
+    changed.
+
+    Attributes
+    ----------
+    searches : int
+        Times a key light was looked for among a renderer's lights.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.scene.light_kit import KeyLights
+    >>> pl = pv.Plotter(off_screen=True)  # the light kit
+    >>> keys = KeyLights()
+    >>> [keys.casts_by_default(light, pl.renderer) for light in pl.renderer.lights]
+    [True, True, False, False, False]
+    >>> keys.searches
+    1
+    """
+
+    def __init__(self) -> None:
+        self._kept: dict[str, tuple[list[int], vtk.vtkLight | None]] = {}
+        self.searches = 0
+
+    def casts_by_default(self, light: vtk.vtkLight, renderer: vtk.vtkRenderer) -> bool:
+        """Return :func:`casts_by_default` of a light of ``renderer``.
+
+        Parameters
+        ----------
+        light : vtk.vtkLight
+            A light of ``renderer``.
+        renderer : vtk.vtkRenderer
+            Its renderer.
+
+        Returns
+        -------
+        bool
+            Whether the light casts when ``enable()`` names no lights.
+        """
+        if not vtk.vtkLight.LightTypeIsCameraLight(light):
+            return True
+        lights = vtk.vtkRenderer.GetLights(renderer)
+        item = lights.GetItemAsObject
+        # The camera lights' times: the headlight's move with the camera, at every frame.
+        stamp = [lights.GetMTime()]
+        for index in range(lights.GetNumberOfItems()):
+            other = item(index)
+            follows = vtk.vtkLight.LightTypeIsCameraLight(other)
+            stamp.append(vtk.vtkLight.GetMTime(other) if follows else -1)
+        place = vtk_id(renderer)
+        kept = self._kept.get(place)
+        if kept is None or kept[0] != stamp:
+            kept = self._kept[place] = (stamp, key_light(renderer))
+            self.searches += 1
+        key = kept[1]
+        return key is not None and vtk_id(key) == vtk_id(light)
 
 
 def unshadowed_reason(light: vtk.vtkLight, renderer: vtk.vtkRenderer) -> str:
