@@ -993,3 +993,19 @@ def test_a_light_swapped_for_an_equal_one_is_planned_and_the_old_one_forgotten()
     assert list(shadows.memo._plans) == [id(twin)]
     assert list(shadows.reach._lights) == [vtk_id(twin)]
     assert pl.shadows.measure(twin).misclassified <= 0.005
+
+
+def test_a_sun_is_taken_again_while_the_camera_stays_and_brought_up_when_it_moves():
+    scene = standard_scene(window_size=(200, 150), light="directional")
+    pl = scene.plotter
+    pl.shadows.enable(filter="hard")
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    kept, still = shadows.lights_kept, draw(pl)
+    assert shadows.lights_kept - kept == 1
+    pl.camera.Azimuth(20)  # a sun's map is fitted to the view: it follows the camera
+    draw(pl)
+    assert shadows.lights_kept - kept == 1
+    pl.camera.Azimuth(-20)
+    assert np.array_equal(draw(pl), still)
+    assert pl.shadows.measure(scene.light).misclassified <= 0.005

@@ -442,7 +442,9 @@ class CubemapTechnique(PerLightMaps[CubeState, CubeDepthPass]):
     def _view_to_light(self, state: CubeState, plan: Cast, context: FrameContext) -> np.ndarray:
         return context.view.to_frame_at(plan.pose.position)
 
-    def _holds_again(self, state: CubeState, plan: Cast, context: FrameContext) -> bool:
+    def _holds_again(
+        self, state: CubeState, plan: Cast, context: FrameContext, same_view: bool
+    ) -> bool:
         """Whether no cube array grew since the light's textures were bound (it is noted bound)."""
         if state.bound_after != self._allocations_now():
             return False

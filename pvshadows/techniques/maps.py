@@ -410,9 +410,11 @@ class MapTechnique(PerLightMaps[MapState, MapDepthPass]):
         assert state.world_to_light is not None  # set with the fit, before any draw
         return state.world_to_light @ context.view.view_to_world
 
-    def _holds_again(self, state: MapState, plan: Cast, context: FrameContext) -> bool:
-        """Whether a light's map is not a sun's: a sun's is fitted to the view, so brought up."""
-        return plan.pose.kind is not LightKind.DIRECTIONAL
+    def _holds_again(
+        self, state: MapState, plan: Cast, context: FrameContext, same_view: bool
+    ) -> bool:
+        """Whether a light's map is not a sun's, or the camera stayed: a sun's follows the view."""
+        return same_view or plan.pose.kind is not LightKind.DIRECTIONAL
 
     def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
         """Fill the light's block entry (its matrices and parameters); return its textures.

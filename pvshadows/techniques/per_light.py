@@ -323,7 +323,7 @@ class PerLightMaps(ABC, Generic[StateT, PassT]):
         state = self._states.get(plan.key)
         if state is None or not self._still_right(state, plan):
             return None
-        if not self._holds_again(state, plan, context):
+        if not self._holds_again(state, plan, context, same_view):
             return None
         if same_view and last.again:
             return last  # its reused passes' report as well: nothing in it changed
@@ -341,8 +341,12 @@ class PerLightMaps(ABC, Generic[StateT, PassT]):
         """Return the ``(4, 4)`` matrix from this frame's view coordinates to the light's space."""
 
     @abstractmethod
-    def _holds_again(self, state: StateT, plan: Cast, context: FrameContext) -> bool:
+    def _holds_again(
+        self, state: StateT, plan: Cast, context: FrameContext, same_view: bool
+    ) -> bool:
         """Whether what a light whose map is still right was given last frame holds in this one.
+
+        ``same_view`` tells whether the camera is last frame's.
 
         A technique that notes which lights each frame binds notes the light.
         """
