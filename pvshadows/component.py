@@ -19,7 +19,7 @@ from pvshadows.model.report import FrameReport
 from pvshadows.model.settings import ShadowSettings, preset, validated
 from pvshadows.pipeline.frame import RendererShadows
 from pvshadows.scene.actor_state import hides_what_is_behind
-from pvshadows.scene.light_kit import KeyLights
+from pvshadows.scene.light_kit import KeyLights, casts_by_default
 from pvshadows.scene.lights import light_kind, light_pose
 from pvshadows.scene.naming import ActorNames
 from pvshadows.scene.planes import require_plane
@@ -569,7 +569,7 @@ class ShadowsComponent:
         key = vtk_id(light)
         if self._lights is not None and key not in self._lights:
             return None
-        if self._lights is None and not self._key_lights.casts_by_default(light, renderer):
+        if self._lights is None and not casts_by_default(light, renderer, self._key_lights):
             return None
         return self._per_light.get(key, self._defaults)
 

@@ -61,7 +61,9 @@ def key_light(renderer: vtk.vtkRenderer) -> vtk.vtkLight | None:
     return best
 
 
-def casts_by_default(light: vtk.vtkLight, renderer: vtk.vtkRenderer) -> bool:
+def casts_by_default(
+    light: vtk.vtkLight, renderer: vtk.vtkRenderer, keys: KeyLights | None = None
+) -> bool:
     """Return whether a light casts shadows when ``enable()`` names no lights.
 
     Parameters
@@ -70,6 +72,9 @@ def casts_by_default(light: vtk.vtkLight, renderer: vtk.vtkRenderer) -> bool:
         A light of ``renderer``.
     renderer : vtk.vtkRenderer
         Its renderer.
+    keys : KeyLights, optional
+        The key lights found so far, looked for again only when the
+        renderer's lights changed; without it, the key light is looked for.
 
     Returns
     -------
@@ -87,18 +92,18 @@ def casts_by_default(light: vtk.vtkLight, renderer: vtk.vtkRenderer) -> bool:
     """
     if not vtk.vtkLight.LightTypeIsCameraLight(light):
         return True
-    key = key_light(renderer)
+    key = key_light(renderer) if keys is None else keys.key_of(renderer)
     return key is not None and vtk_id(key) == vtk_id(light)
 
 
 class KeyLights:
     """Each renderer's key light (:func:`key_light`), looked for again only when its lights changed.
 
-    A frame asks of each light whether it casts by default: with the light
-    kit, four lights follow the camera and each would look for the key
-    light among all of them. The modification times of the renderer's
-    camera lights, and of its list of lights, tell when the answer may have
-    changed.
+    A frame asks of each light whether it casts by default
+    (:func:`casts_by_default`): with the light kit, four lights follow the
+    camera and each would look for the key light among all of them. The
+    modification times of the renderer's camera lights, and of its list of
+    lights, tell when the answer may have changed.
 
     Attributes
     ----------
@@ -108,10 +113,10 @@ class KeyLights:
     Examples
     --------
     >>> import pyvista as pv
-    >>> from pvshadows.scene.light_kit import KeyLights
+    >>> from pvshadows.scene.light_kit import KeyLights, casts_by_default
     >>> pl = pv.Plotter(off_screen=True)  # the light kit
     >>> keys = KeyLights()
-    >>> [keys.casts_by_default(light, pl.renderer) for light in pl.renderer.lights]
+    >>> [casts_by_default(light, pl.renderer, keys) for light in pl.renderer.lights]
     [True, True, False, False, False]
     >>> keys.searches
     1
@@ -121,23 +126,19 @@ class KeyLights:
         self._kept: dict[str, tuple[list[int], vtk.vtkLight | None]] = {}
         self.searches = 0
 
-    def casts_by_default(self, light: vtk.vtkLight, renderer: vtk.vtkRenderer) -> bool:
-        """Return :func:`casts_by_default` of a light of ``renderer``.
+    def key_of(self, renderer: vtk.vtkRenderer) -> vtk.vtkLight | None:
+        """Return :func:`key_light` of a renderer, looked for again only when its lights changed.
 
         Parameters
         ----------
-        light : vtk.vtkLight
-            A light of ``renderer``.
         renderer : vtk.vtkRenderer
-            Its renderer.
+            The renderer.
 
         Returns
         -------
-        bool
-            Whether the light casts when ``enable()`` names no lights.
+        vtk.vtkLight or None
+            Its key light.
         """
-        if not vtk.vtkLight.LightTypeIsCameraLight(light):
-            return True
         lights = vtk.vtkRenderer.GetLights(renderer)
         item = lights.GetItemAsObject
         # The camera lights' times: the headlight's move with the camera, at every frame.
@@ -151,8 +152,7 @@ class KeyLights:
         if kept is None or kept[0] != stamp:
             kept = self._kept[place] = (stamp, key_light(renderer))
             self.searches += 1
-        key = kept[1]
-        return key is not None and vtk_id(key) == vtk_id(light)
+        return kept[1]
 
 
 def unshadowed_reason(light: vtk.vtkLight, renderer: vtk.vtkRenderer) -> str:
