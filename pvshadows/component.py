@@ -66,8 +66,6 @@ class ShadowsComponent:
         self._defaults = ShadowSettings()
         self._per_light: dict[str, ShadowSettings] = {}
         self._lights: set[str] | None = None
-        #: Each renderer's key light, the light that casts by default among the light kit's.
-        self._key_lights = KeyLights()
         self._names = ActorNames(plotter)
         self._reader = SceneReader(self._actor_name)
         self._renderers: list[RendererShadows] = []
@@ -191,7 +189,6 @@ class ShadowsComponent:
         for renderer in self._renderers:
             renderer.detach()
         self._renderers = []
-        self._key_lights = KeyLights()
         if self._plotter.render_window is not None:
             self._plotter.render()
 
@@ -564,12 +561,12 @@ class ShadowsComponent:
     # -- helpers ---------------------------------------------------------------------------
 
     def _settings_for(
-        self, light: vtk.vtkLight, renderer: vtk.vtkRenderer
+        self, light: vtk.vtkLight, renderer: vtk.vtkRenderer, keys: KeyLights
     ) -> ShadowSettings | None:
         key = vtk_id(light)
         if self._lights is not None and key not in self._lights:
             return None
-        if self._lights is None and not casts_by_default(light, renderer, self._key_lights):
+        if self._lights is None and not casts_by_default(light, renderer, keys):
             return None
         return self._per_light.get(key, self._defaults)
 

@@ -13,6 +13,7 @@ import time
 import traceback
 import warnings
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 
 from pvshadows import _vtk as vtk
@@ -28,6 +29,7 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.planner import PlanMemo, plan_frame
 from pvshadows.pipeline.reach import ReachCache
 from pvshadows.scene.impostors import LIGHT_SPACE_TECHNIQUES, lit_without_triangles
+from pvshadows.scene.light_kit import KeyLights
 from pvshadows.scene.reader import SceneReader
 from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import vtk_id
@@ -47,7 +49,9 @@ class RendererShadows:
     renderer : vtk.vtkRenderer
         The renderer.
     settings_for : callable
-        Returns a light's settings, or ``None`` when it casts no shadow.
+        Returns a light's settings, or ``None`` when it casts no shadow, given
+        the light and (keyword ``keys``) the frame's
+        :class:`~pvshadows.scene.light_kit.KeyLights`.
     reader : SceneReader
         Reads the actors and their roles each frame.
     """
@@ -55,7 +59,7 @@ class RendererShadows:
     def __init__(
         self,
         renderer: vtk.vtkRenderer,
-        settings_for: Callable[[vtk.vtkLight], ShadowSettings | None],
+        settings_for: Callable[..., ShadowSettings | None],
         reader: SceneReader,
     ) -> None:
         self.renderer = renderer
@@ -165,15 +169,17 @@ class RendererShadows:
         last = self._context.view if self._context is not None else None
         view = FrameView.of(renderer, last)
         self._where = "planning"
+        keys = KeyLights()  # the light kit's key light, looked for once this frame
         plans = plan_frame(
             renderer,
             snapshot,
-            self._settings_for,
+            partial(self._settings_for, keys=keys),
             self.reach,
             view,
             self.warned_open,
             self.memo,
             self._extrudes_on_gpu,
+            keys,
         )
         context = FrameContext(
             self._window,

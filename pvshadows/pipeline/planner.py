@@ -39,7 +39,7 @@ from pvshadows.pipeline.sight import ViewSight
 from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.culling import box_around, box_corners
-from pvshadows.scene.light_kit import unshadowed_reason
+from pvshadows.scene.light_kit import KeyLights, unshadowed_reason
 from pvshadows.scene.lights import (
     LightKind,
     LightPose,
@@ -264,7 +264,7 @@ class PlanMemo:
             or isinstance(use, str)
             or not _same_inputs((before[0], time, *before[2:]), inputs)
             or not _seen_alike(seen, use, in_view)
-            or _casts_nothing(light, settings, renderer) is not None
+            or _casts_nothing(light, settings, renderer, shared.keys) is not None
         ):
             return None
         try:
@@ -394,6 +394,7 @@ def plan_frame(
     warned: set[tuple] | None = None,
     memo: PlanMemo | None = None,
     extrude_on_gpu: Callable[[], bool] | None = None,
+    key_lights: KeyLights | None = None,
 ) -> list[LightPlan]:
     """Plan every light of a renderer for this frame.
 
@@ -422,6 +423,10 @@ def plan_frame(
         Tells whether the window compiles the geometry shader that extrudes
         shadow volumes (asked only when a volume light's settings want it);
         assumed when not given.
+    key_lights : KeyLights, optional
+        This frame's key lights (:class:`pvshadows.scene.light_kit.KeyLights`),
+        shared with ``settings_for``, so that the key light is looked for once
+        a frame; a fresh one by default.
 
     Returns
     -------
@@ -442,7 +447,8 @@ def plan_frame(
     reach = ReachCache() if reach is None else reach
     warned = set() if warned is None else warned
     gpu = extrude_on_gpu if extrude_on_gpu is not None else lambda: True
-    shared = _Shared(snapshot, in_view, memo if memo is not None else PlanMemo())
+    keys = KeyLights() if key_lights is None else key_lights
+    shared = _Shared(snapshot, in_view, memo if memo is not None else PlanMemo(), keys)
     planned = 0
     for index, light in enumerate(lights):
         inputs = (light, pose_time(light), settings_for(light), index, vtk_index, snapshot)
@@ -496,11 +502,15 @@ def _reached_of(hits: np.ndarray, snapshot: Snapshot) -> _Reached:
 class _Shared:
     """What the lights planned in one frame share, worked out once when first asked."""
 
-    def __init__(self, snapshot: Snapshot, in_view: ViewSight, memo: PlanMemo) -> None:
+    def __init__(
+        self, snapshot: Snapshot, in_view: ViewSight, memo: PlanMemo, keys: KeyLights
+    ) -> None:
         self.snapshot = snapshot
         self.in_view = in_view
         #: Reads each light's pose once per pose time (:meth:`PlanMemo.pose`).
         self.pose = memo.pose
+        #: The renderer's key light, looked for once (:func:`_casts_nothing`).
+        self.keys = keys
 
     @cached
     def every_actor(self) -> _Reached:
@@ -541,7 +551,7 @@ def _plan_light(
     light, _, settings, index, vtk_index, _ = inputs
     plan = LightPlan(light, index, vtk_index, light_kind(light), settings)
     snapshot = shared.snapshot
-    unlit = _casts_nothing(light, settings, renderer)
+    unlit = _casts_nothing(light, settings, renderer, shared.keys)
     if unlit is not None:
         plan.notes.append(unlit)
         return plan, None, None
@@ -593,11 +603,14 @@ def _plan_light(
 
 
 def _casts_nothing(
-    light: vtk.vtkLight, settings: ShadowSettings | None, renderer: vtk.vtkRenderer
+    light: vtk.vtkLight,
+    settings: ShadowSettings | None,
+    renderer: vtk.vtkRenderer,
+    keys: KeyLights,
 ) -> str | None:
     """Return why a light casts nothing whatever its pose, or ``None`` when it may cast."""
     if settings is None:
-        return unshadowed_reason(light, renderer)
+        return unshadowed_reason(light, renderer, keys)
     if not casts_light(light):
         return "the light is off or has zero intensity: it casts nothing and costs nothing"
     if settings.strength == 0.0:

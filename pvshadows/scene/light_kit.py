@@ -73,8 +73,8 @@ def casts_by_default(
     renderer : vtk.vtkRenderer
         Its renderer.
     keys : KeyLights, optional
-        The key lights found so far, looked for again only when the
-        renderer's lights changed; without it, the key light is looked for.
+        The key lights this frame has found so far; without it, the key
+        light is looked for.
 
     Returns
     -------
@@ -97,13 +97,13 @@ def casts_by_default(
 
 
 class KeyLights:
-    """Each renderer's key light (:func:`key_light`), looked for again only when its lights changed.
+    """Each renderer's key light (:func:`key_light`), looked for once: kept for one frame.
 
     A frame asks of each light whether it casts by default
     (:func:`casts_by_default`): with the light kit, four lights follow the
-    camera and each would look for the key light among all of them. The
-    modification times of the renderer's camera lights, and of its list of
-    lights, tell when the answer may have changed.
+    camera and each would look for the key light among all of them. No
+    light changes while a frame is planned, so one frame's lights share one
+    look; the next frame makes a new object.
 
     Attributes
     ----------
@@ -123,11 +123,11 @@ class KeyLights:
     """
 
     def __init__(self) -> None:
-        self._kept: dict[str, tuple[list[int], vtk.vtkLight | None]] = {}
+        self._found: dict[str, vtk.vtkLight | None] = {}
         self.searches = 0
 
     def key_of(self, renderer: vtk.vtkRenderer) -> vtk.vtkLight | None:
-        """Return :func:`key_light` of a renderer, looked for again only when its lights changed.
+        """Return :func:`key_light` of a renderer, looked for on the first call only.
 
         Parameters
         ----------
@@ -139,23 +139,16 @@ class KeyLights:
         vtk.vtkLight or None
             Its key light.
         """
-        lights = vtk.vtkRenderer.GetLights(renderer)
-        item = lights.GetItemAsObject
-        # The camera lights' times: the headlight's move with the camera, at every frame.
-        stamp = [lights.GetMTime()]
-        for index in range(lights.GetNumberOfItems()):
-            other = item(index)
-            follows = vtk.vtkLight.LightTypeIsCameraLight(other)
-            stamp.append(vtk.vtkLight.GetMTime(other) if follows else -1)
         place = vtk_id(renderer)
-        kept = self._kept.get(place)
-        if kept is None or kept[0] != stamp:
-            kept = self._kept[place] = (stamp, key_light(renderer))
+        if place not in self._found:
+            self._found[place] = key_light(renderer)
             self.searches += 1
-        return kept[1]
+        return self._found[place]
 
 
-def unshadowed_reason(light: vtk.vtkLight, renderer: vtk.vtkRenderer) -> str:
+def unshadowed_reason(
+    light: vtk.vtkLight, renderer: vtk.vtkRenderer, keys: KeyLights | None = None
+) -> str:
     """Return why a light without shadow settings casts nothing, for ``last_frame``.
 
     Parameters
@@ -164,13 +157,15 @@ def unshadowed_reason(light: vtk.vtkLight, renderer: vtk.vtkRenderer) -> str:
         The light.
     renderer : vtk.vtkRenderer
         Its renderer.
+    keys : KeyLights, optional
+        As for :func:`casts_by_default`.
 
     Returns
     -------
     str
         The note.
     """
-    if not casts_by_default(light, renderer):
+    if not casts_by_default(light, renderer, keys):
         return (
             "a camera light other than the key light (the brightest light that follows "
             "the camera): fill and back lights stay unshadowed unless named in "
