@@ -34,6 +34,14 @@ def change(before, after):
     return {name: after[name] - before[name] for name in before}
 
 
+def hard_standard(light):
+    """Return the standard scene under ``light`` with hard shadows, drawn once, and its frames."""
+    scene = standard_scene(window_size=(200, 150), light=light)
+    scene.plotter.shadows.enable(filter="hard")
+    draw(scene.plotter)
+    return scene, scene.plotter.shadows._renderers[0]
+
+
 def crowd():
     pl, light, _ = crowd_scene(200)
     pl.shadows.enable(filter="hard")
@@ -882,11 +890,8 @@ def test_a_lights_pose_is_read_from_vtk_only_when_its_pose_time_moved():
 
 @pytest.mark.parametrize("light", ["spot", "point", "directional"])
 def test_a_light_that_only_moved_takes_its_last_plan_to_its_new_pose(light):
-    scene = standard_scene(window_size=(200, 150), light=light)
+    scene, shadows = hard_standard(light)
     pl = scene.plotter
-    pl.shadows.enable(filter="hard")
-    draw(pl)
-    shadows = pl.shadows._renderers[0]
     memo, (plan,) = shadows.memo, shadows.plans
     cast, reposed, planned = plan.cast, memo.reposed, memo.planned
     scene.light.position = np.add(scene.light.position, (0.05, 0.0, 0.0))
@@ -904,11 +909,9 @@ def test_a_light_that_only_moved_takes_its_last_plan_to_its_new_pose(light):
     ["switched off", "widened to a point light", "out of its cover"],
 )
 def test_a_moved_spot_light_whose_decisions_change_is_planned_afresh(change):
-    scene = standard_scene(window_size=(200, 150), light="spot")
+    scene, shadows = hard_standard("spot")
     pl = scene.plotter
-    pl.shadows.enable(filter="hard")
-    draw(pl)
-    memo = pl.shadows._renderers[0].memo
+    memo = shadows.memo
     reposed, planned = memo.reposed, memo.planned
     scene.light.position = np.add(scene.light.position, (0.05, 0.0, 0.0))
     if change == "switched off":
@@ -979,11 +982,8 @@ def test_a_dragged_light_gathers_its_casters_once_and_keeps_its_shadows_right(li
 
 
 def test_a_light_swapped_for_an_equal_one_is_planned_and_the_old_one_forgotten():
-    scene = standard_scene(window_size=(200, 150), light="spot")
+    scene, shadows = hard_standard("spot")
     pl = scene.plotter
-    pl.shadows.enable(filter="hard")
-    draw(pl)
-    shadows = pl.shadows._renderers[0]
     twin = scene.light.copy()
     assert twin == scene.light  # pyvista's lights compare by their settings: not the same light
     pl.renderer.RemoveLight(scene.light)
@@ -996,11 +996,8 @@ def test_a_light_swapped_for_an_equal_one_is_planned_and_the_old_one_forgotten()
 
 
 def test_a_sun_is_taken_again_while_the_camera_stays_and_brought_up_when_it_moves():
-    scene = standard_scene(window_size=(200, 150), light="directional")
+    scene, shadows = hard_standard("directional")
     pl = scene.plotter
-    pl.shadows.enable(filter="hard")
-    draw(pl)
-    shadows = pl.shadows._renderers[0]
     kept, still = shadows.lights_kept, draw(pl)
     assert shadows.lights_kept - kept == 1
     pl.camera.Azimuth(20)  # a sun's map is fitted to the view: it follows the camera

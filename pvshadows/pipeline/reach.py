@@ -296,11 +296,7 @@ class ReachCache:
     def _stacked(self, covers: list[LightPose]) -> SpotCones:
         """Return the covers stacked for :func:`boxes_in_spots` (again only when one changed)."""
         kept = self._cones
-        if (
-            kept is None
-            or len(kept[0]) != len(covers)
-            or not all(a is b for a, b in zip(kept[0], covers, strict=True))
-        ):
+        if kept is None or not same_objects(kept[0], covers):
             kept = self._cones = (covers, SpotCones(covers))
         return kept[1]
 

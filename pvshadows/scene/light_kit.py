@@ -105,26 +105,20 @@ class KeyLights:
     light changes while a frame is planned, so one frame's lights share one
     look; the next frame makes a new object.
 
-    Attributes
-    ----------
-    searches : int
-        Times a key light was looked for among a renderer's lights.
-
     Examples
     --------
     >>> import pyvista as pv
-    >>> from pvshadows.scene.light_kit import KeyLights, casts_by_default
+    >>> from pvshadows.scene.light_kit import KeyLights, casts_by_default, key_light
     >>> pl = pv.Plotter(off_screen=True)  # the light kit
     >>> keys = KeyLights()
     >>> [casts_by_default(light, pl.renderer, keys) for light in pl.renderer.lights]
     [True, True, False, False, False]
-    >>> keys.searches
-    1
+    >>> keys.key_of(pl.renderer) is key_light(pl.renderer)
+    True
     """
 
     def __init__(self) -> None:
         self._found: dict[str, vtk.vtkLight | None] = {}
-        self.searches = 0
 
     def key_of(self, renderer: vtk.vtkRenderer) -> vtk.vtkLight | None:
         """Return :func:`key_light` of a renderer, looked for on the first call only.
@@ -142,7 +136,6 @@ class KeyLights:
         place = vtk_id(renderer)
         if place not in self._found:
             self._found[place] = key_light(renderer)
-            self.searches += 1
         return self._found[place]
 
 
