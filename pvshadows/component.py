@@ -18,6 +18,7 @@ from pvshadows.model.plan import AUTO_TECHNIQUE, SERVES, LightPlan
 from pvshadows.model.report import FrameReport
 from pvshadows.model.settings import ShadowSettings, preset, validated
 from pvshadows.pipeline.frame import RendererShadows
+from pvshadows.pipeline.planner import renderer_lights
 from pvshadows.scene.actor_state import hides_what_is_behind
 from pvshadows.scene.light_kit import KeyLights, casts_by_default
 from pvshadows.scene.lights import light_kind, light_pose
@@ -581,7 +582,7 @@ class ShadowsComponent:
         return [
             (renderer, light)
             for renderer in self._plotter.renderers
-            for light in _lights_of(renderer)
+            for light in renderer_lights(renderer)
         ]
 
     def _check_light(self, light: object, argument: str) -> vtk.vtkLight:
@@ -635,7 +636,7 @@ class ShadowsComponent:
             kind = light_kind(light)
             if light.LightTypeIsHeadlight() or kind in SERVES[defaults.technique]:
                 continue
-            index = [vtk_id(found) for found in _lights_of(renderer)].index(key)
+            index = [vtk_id(found) for found in renderer_lights(renderer)].index(key)
             unserved.append(f"light {index} ({kind.value}, {AUTO_TECHNIQUE[kind]})")
         if unserved:
             msg = (
@@ -758,12 +759,6 @@ class ShadowsComponent:
             )
             self._traced = (key, result)
         return self._traced[1]
-
-
-def _lights_of(renderer: vtk.vtkRenderer) -> list[vtk.vtkLight]:
-    lights = renderer.GetLights()
-    lights.InitTraversal()
-    return [lights.GetNextItem() for _ in range(lights.GetNumberOfItems())]
 
 
 def _light_list(lights: object) -> list[object]:

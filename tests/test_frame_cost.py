@@ -1006,3 +1006,26 @@ def test_a_sun_is_taken_again_while_the_camera_stays_and_brought_up_when_it_move
     pl.camera.Azimuth(-20)
     assert np.array_equal(draw(pl), still)
     assert pl.shadows.measure(scene.light).misclassified <= 0.005
+
+
+def test_the_lights_are_listed_from_vtk_again_only_when_the_renderer_gains_or_loses_one():
+    pl = lit_twice()
+    shadows = pl.shadows._renderers[0]
+    memo, listed = shadows.memo, shadows.memo.listings
+    spot = next(light for light in pl.renderer.lights if light.cone_angle < 90)
+    for _ in range(3):  # the camera, a light and an actor move: the same lights
+        pl.camera.Azimuth(5)
+        spot.position = np.add(spot.position, (0.05, 0.0, 0.0))
+        pl.renderer.actors["sphere"].AddPosition(0.01, 0.0, 0.0)
+        draw(pl)
+    assert memo.listings == listed
+    pl.renderer.RemoveLight(spot)
+    draw(pl)
+    assert memo.listings == listed + 1
+    assert [plan.light for plan in shadows.plans] == list(pl.renderer.lights)
+    assert all(plan.light is not spot for plan in shadows.plans)
+    pl.add_light(spot)
+    draw(pl)
+    assert memo.listings == listed + 2
+    assert shadows.plans[-1].light is spot and shadows.plans[-1].cast is not None
+    assert pl.shadows.measure(spot).misclassified <= 0.005

@@ -15,7 +15,7 @@ faces without casters) it reports in the same frame's words.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import fields, replace
 from typing import Any, NamedTuple
 
@@ -118,6 +118,8 @@ class PlanMemo:
     reposed : int
         Lights planned again by taking their last plan to their new pose
         (:meth:`repose`), over all frames; counted in :attr:`planned` too.
+    listings : int
+        Times a renderer's lights were listed from VTK (:meth:`lights_of`).
     """
 
     def __init__(self) -> None:
@@ -126,6 +128,8 @@ class PlanMemo:
         self.planned = 0
         self.poses_read = 0
         self.reposed = 0
+        self.listings = 0
+        self._lights: tuple[vtk.vtkLightCollection, int, tuple[vtk.vtkLight, ...]] | None = None
         self._poses: dict[int, tuple[vtk.vtkLight, int, LightPose]] = {}
         self._tested = 0
         self._witnesses: dict[int, int] = {}
@@ -134,13 +138,51 @@ class PlanMemo:
         ] = {}
         self._in_view: tuple[Snapshot, FrameView, ViewSight] | None = None
         #: The lights of the last :meth:`keep_only`.
-        self._kept_for: list[vtk.vtkLight] = []
+        self._kept_for: tuple[vtk.vtkLight, ...] = ()
 
     def forget(self) -> None:
         """Plan every light again next frame."""
         self._plans = {}
         self._poses = {}
         self._in_view = None
+
+    def lights_of(self, renderer: vtk.vtkRenderer) -> tuple[vtk.vtkLight, ...]:
+        """Return a renderer's lights in order, listed again only when its collection changed.
+
+        Adding, inserting, replacing or removing a light moves the modification
+        time of the renderer's light collection (a light's own changes do not):
+        the same collection at the same time hands back the last call's tuple.
+
+        Parameters
+        ----------
+        renderer : vtk.vtkRenderer
+            The renderer.
+
+        Returns
+        -------
+        tuple of vtk.vtkLight
+            Its lights, in the renderer's order.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> from pvshadows.pipeline.planner import PlanMemo
+        >>> pl = pv.Plotter(off_screen=True, lighting=None)
+        >>> pl.add_light(pv.Light(position=(0, 0, 1)))
+        >>> memo = PlanMemo()
+        >>> memo.lights_of(pl.renderer) is memo.lights_of(pl.renderer)
+        True
+        >>> pl.add_light(pv.Light(position=(1, 0, 1)))
+        >>> len(memo.lights_of(pl.renderer)), memo.listings
+        (2, 2)
+        """
+        collection = vtk.vtkRenderer.GetLights(renderer)  # past PyVista's attribute checks
+        stamp = vtk.vtkObject.GetMTime(collection)
+        kept = self._lights
+        if kept is None or kept[0] is not collection or kept[1] != stamp:
+            kept = self._lights = (collection, stamp, renderer_lights(renderer))
+            self.listings += 1
+        return kept[2]
 
     def pose(self, light: vtk.vtkLight, time: int) -> LightPose:
         """Return a light's pose (:func:`light_pose`), read again only when ``time`` moved.
@@ -311,11 +353,11 @@ class PlanMemo:
         seen = (in_view, _view_key(use, in_view))
         self._plans[id(inputs[0])] = (inputs, plan, len(plan.notes), use, seen, reached)
 
-    def keep_only(self, lights: list[vtk.vtkLight]) -> None:
+    def keep_only(self, lights: Sequence[vtk.vtkLight]) -> None:
         """Forget the lights no longer the renderer's (none if they are the last call's)."""
         if same_objects(lights, self._kept_for):
             return
-        self._kept_for = list(lights)
+        self._kept_for = tuple(lights)
         alive = {id(light) for light in lights}
         for key in set(self._plans) - alive:
             del self._plans[key]
@@ -434,9 +476,7 @@ def plan_frame(
         One plan per light, in the renderer's order; each that casts holds
         its :class:`pvshadows.model.plan.Cast`.
     """
-    collection = vtk.vtkRenderer.GetLights(renderer)  # past PyVista's attribute checks
-    collection.InitTraversal()
-    lights = [collection.GetNextItem() for _ in range(collection.GetNumberOfItems())]
+    lights = renderer_lights(renderer) if memo is None else memo.lights_of(renderer)
     view = FrameView.of(renderer) if view is None else view
     if memo is None:
         in_view = ViewSight(snapshot.receiver_bounds, snapshot.receivers_box, view.planes)
@@ -475,6 +515,31 @@ def plan_frame(
         else:
             memo.kept += 1
     return plans
+
+
+def renderer_lights(renderer: vtk.vtkRenderer) -> tuple[vtk.vtkLight, ...]:
+    """Return a renderer's lights, in its order.
+
+    Parameters
+    ----------
+    renderer : vtk.vtkRenderer
+        The renderer.
+
+    Returns
+    -------
+    tuple of vtk.vtkLight
+        Its lights.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.pipeline.planner import renderer_lights
+    >>> len(renderer_lights(pv.Plotter(off_screen=True).renderer))  # the light kit
+    5
+    """
+    collection = vtk.vtkRenderer.GetLights(renderer)  # past PyVista's attribute checks
+    collection.InitTraversal()
+    return tuple([collection.GetNextItem() for _ in range(collection.GetNumberOfItems())])
 
 
 class _Reached(NamedTuple):

@@ -16,6 +16,7 @@ vectorised call.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -131,16 +132,16 @@ def cover_holds(cover: LightPose, pose: LightPose) -> bool:
     return along >= math.hypot(ox, oy, oz) * math.cos(math.radians(cover.cone_angle))
 
 
-def same_objects(first: list, second: list) -> bool:
-    """Tell whether two lists hold the very same objects in the same order.
+def same_objects(first: Sequence, second: Sequence) -> bool:
+    """Tell whether two sequences hold the very same objects in the same order.
 
     Compared by identity: a :class:`pyvista.Light` equals another with the
     same settings.
 
     Parameters
     ----------
-    first, second : list
-        The lists.
+    first, second : sequence
+        The lists or tuples.
 
     Returns
     -------
@@ -155,6 +156,8 @@ def same_objects(first: list, second: list) -> bool:
     >>> same_objects([light], [light]), same_objects([light], [pv.Light()])
     (True, False)
     """
+    if first is second:
+        return True
     if len(first) != len(second):
         return False
     for one, other in zip(first, second, strict=True):
@@ -188,7 +191,7 @@ class ReachCache:
     def __init__(self) -> None:
         self._lights: dict[str, _Reached] = {}
         #: The lights of the last :meth:`keep_only`.
-        self._kept_for: list[vtk.vtkLight] = []
+        self._kept_for: tuple[vtk.vtkLight, ...] = ()
         #: The covers last stacked for a test of many lights at once, and their stack.
         self._cones: tuple[list[LightPose], SpotCones] | None = None
         #: Cone tests run since the cache was made (one per actor and light tested).
@@ -327,17 +330,17 @@ class ReachCache:
         self._lights[light] = _Reached(cover, snapshot, hits, pose.key())
         return hits
 
-    def keep_only(self, lights: list[vtk.vtkLight]) -> None:
+    def keep_only(self, lights: Sequence[vtk.vtkLight]) -> None:
         """Forget the lights not in ``lights``; nothing to look at when they are the last call's.
 
         Parameters
         ----------
-        lights : list of vtk.vtkLight
+        lights : sequence of vtk.vtkLight
             The lights still planned.
         """
         if same_objects(lights, self._kept_for):
             return  # answers are kept only for these lights, and none was forgotten since
-        self._kept_for = list(lights)
+        self._kept_for = tuple(lights)
         alive = {vtk_id(light) for light in lights}
         gone = set(self._lights) - alive
         for key in gone:

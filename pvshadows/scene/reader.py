@@ -171,7 +171,8 @@ class SceneReader:
             cache = self._frames[key] = _RendererCache()
         # VTK's own methods, called on the class: PyVista's wrappers check every attribute
         camera = vtk.vtkCamera.GetMTime(vtk.vtkRenderer.GetActiveCamera(renderer))
-        props = vtk.vtkRenderer.GetViewProps(renderer).GetMTime()
+        cache.view_props = vtk.vtkRenderer.GetViewProps(renderer)
+        props = vtk.vtkObject.GetMTime(cache.view_props)
         if cache.props != props:
             collection = renderer.GetActors()
             collection.InitTraversal()
@@ -401,6 +402,9 @@ class _RendererCache:
     """
 
     props: int = -1
+    #: The renderer's props, held so that their Python wrapper lives on: VTK makes a
+    #: wrapper afresh, looking its class up by name, for an object Python no longer holds.
+    view_props: vtk.vtkPropCollection | None = None
     actors: list[vtk.vtkActor] = field(default_factory=list)
     entries: dict[int, _Entry] = field(default_factory=dict)
     #: Each shadowed actor's row in the snapshot's actors, by ``id`` of the actor.

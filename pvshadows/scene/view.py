@@ -56,9 +56,10 @@ class FrameView:
     viewport: tuple[int, int]
     planes: np.ndarray
     stamp: tuple = ()
-    #: The camera's VTK matrices this view was read from. Held only so that their
-    #: Python wrappers live on: VTK makes a wrapper afresh, looking its class up by
-    #: name, for an object that Python no longer holds.
+    #: The camera's VTK matrices this view was read from, and the one its camera lights
+    #: follow (every frame's :func:`~pvshadows.scene.lights.pose_time` reads it). Held
+    #: only so that their Python wrappers live on: VTK makes a wrapper afresh, looking
+    #: its class up by name, for an object that Python no longer holds.
     _matrices: tuple = field(default=(), repr=False, compare=False)
 
     @classmethod
@@ -107,7 +108,7 @@ class FrameView:
             (int(width), int(height)),
             clip_planes(world_to_clip),
             stamp,
-            (to_view, to_clip),
+            (to_view, to_clip, vtk.vtkCamera.GetCameraLightTransformMatrix(camera)),
         )
 
     @cached
