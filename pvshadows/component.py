@@ -18,10 +18,9 @@ from pvshadows.model.plan import AUTO_TECHNIQUE, SERVES, LightPlan
 from pvshadows.model.report import FrameReport
 from pvshadows.model.settings import ShadowSettings, preset, validated
 from pvshadows.pipeline.frame import RendererShadows
-from pvshadows.pipeline.planner import renderer_lights
 from pvshadows.scene.actor_state import hides_what_is_behind
 from pvshadows.scene.light_kit import KeyLights, casts_by_default
-from pvshadows.scene.lights import light_kind, light_pose
+from pvshadows.scene.lights import light_kind, light_pose, renderer_lights
 from pvshadows.scene.naming import ActorNames
 from pvshadows.scene.planes import require_plane
 from pvshadows.scene.reader import SceneReader

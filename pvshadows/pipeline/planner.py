@@ -47,6 +47,7 @@ from pvshadows.scene.lights import (
     light_kind,
     light_pose,
     pose_time,
+    renderer_lights,
 )
 from pvshadows.scene.planes import PlaneChoice, choose_plane, sole_plane
 from pvshadows.scene.snapshot import RECEIVERS, Snapshot
@@ -515,31 +516,6 @@ def plan_frame(
         else:
             memo.kept += 1
     return plans
-
-
-def renderer_lights(renderer: vtk.vtkRenderer) -> tuple[vtk.vtkLight, ...]:
-    """Return a renderer's lights, in its order.
-
-    Parameters
-    ----------
-    renderer : vtk.vtkRenderer
-        The renderer.
-
-    Returns
-    -------
-    tuple of vtk.vtkLight
-        Its lights.
-
-    Examples
-    --------
-    >>> import pyvista as pv
-    >>> from pvshadows.pipeline.planner import renderer_lights
-    >>> len(renderer_lights(pv.Plotter(off_screen=True).renderer))  # the light kit
-    5
-    """
-    collection = vtk.vtkRenderer.GetLights(renderer)  # past PyVista's attribute checks
-    collection.InitTraversal()
-    return tuple([collection.GetNextItem() for _ in range(collection.GetNumberOfItems())])
 
 
 class _Reached(NamedTuple):

@@ -257,3 +257,28 @@ def casts_light(light: vtk.vtkLight) -> bool:
     False
     """
     return bool(vtk.vtkLight.GetSwitch(light)) and vtk.vtkLight.GetIntensity(light) > 0.0
+
+
+def renderer_lights(renderer: vtk.vtkRenderer) -> tuple[vtk.vtkLight, ...]:
+    """Return a renderer's lights, in its order.
+
+    Parameters
+    ----------
+    renderer : vtk.vtkRenderer
+        The renderer.
+
+    Returns
+    -------
+    tuple of vtk.vtkLight
+        Its lights.
+
+    Examples
+    --------
+    >>> import pyvista as pv
+    >>> from pvshadows.scene.lights import renderer_lights
+    >>> len(renderer_lights(pv.Plotter(off_screen=True).renderer))  # the light kit
+    5
+    """
+    collection = vtk.vtkRenderer.GetLights(renderer)  # past PyVista's attribute checks
+    collection.InitTraversal()
+    return tuple([collection.GetNextItem() for _ in range(collection.GetNumberOfItems())])
