@@ -171,7 +171,8 @@ class SceneReader:
             cache = self._frames[key] = _RendererCache()
         # VTK's own methods, called on the class: PyVista's wrappers check every attribute
         camera = vtk.vtkCamera.GetMTime(vtk.vtkRenderer.GetActiveCamera(renderer))
-        cache.view_props = vtk.vtkRenderer.GetViewProps(renderer)
+        if cache.view_props is None:  # a renderer's props are one collection for its life
+            cache.view_props = vtk.vtkRenderer.GetViewProps(renderer)
         props = vtk.vtkObject.GetMTime(cache.view_props)
         if cache.props != props:
             collection = renderer.GetActors()
