@@ -1029,3 +1029,60 @@ def test_the_lights_are_listed_from_vtk_again_only_when_the_renderer_gains_or_lo
     assert memo.listings == listed + 2
     assert shadows.plans[-1].light is spot and shadows.plans[-1].cast is not None
     assert pl.shadows.measure(spot).misclassified <= 0.005
+
+
+#: What each screen-mask technique is held to against the ray-cast reference.
+MASK_BOUNDS = {"volume": 0.003, "planar": 0.005}
+
+
+@pytest.mark.parametrize("technique", ["volume", "planar"])
+def test_a_screen_mask_is_drawn_again_only_when_the_camera_or_the_actors_changed(technique):
+    scene = standard_scene(window_size=(200, 150), light="spot")
+    pl = scene.plotter
+    if technique == "planar":  # the ground receives; the box too, which planar shadows say
+        for actor in (scene.sphere, scene.cylinder):
+            pl.shadows.set_receiver(actor, False)
+    pl.shadows.enable(technique=technique)
+    drawn = draw(pl)
+    shadows = pl.shadows._renderers[0]
+    report = lambda: next(lt for lt in pl.shadows.last_frame.lights if lt.technique)  # noqa: E731
+    notes = report().notes
+    kept = shadows.lights_kept
+    for _ in range(3):
+        again = draw(pl)
+        # the light is taken again as it was: its mask, shading, textures and notes
+        assert [p.status for p in report().passes] == ["reused"]
+        assert report().notes == notes
+    assert shadows.lights_kept - kept == 3
+    assert np.array_equal(again, drawn)
+    pl.camera.Azimuth(10)  # a screen-space mask follows the camera
+    draw(pl)
+    assert shadows.lights_kept - kept == 3
+    assert "run" in [p.status for p in report().passes]
+    scene.sphere.position = (0.2, 0.0, 0.0)
+    draw(pl)
+    assert shadows.lights_kept - kept == 3
+    assert pl.shadows.measure(scene.light).misclassified <= MASK_BOUNDS[technique]
+
+
+def test_a_volume_light_chooses_zpass_or_zfail_again_only_for_a_new_camera_or_hidden_lines():
+    scene = standard_scene(window_size=(200, 150), light="spot")
+    pl = scene.plotter
+    pl.shadows.enable(technique="volume")
+    draw(pl)
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    chosen = shadows.memo.zmodes_chosen
+    for _ in range(3):
+        draw(pl)
+    assert shadows.memo.zmodes_chosen == chosen
+    pl.camera.Azimuth(5)
+    draw(pl)
+    draw(pl)
+    assert shadows.memo.zmodes_chosen == chosen + 1
+    pl.enable_hidden_line_removal()
+    draw(pl)
+    assert shadows.memo.zmodes_chosen == chosen + 2
+    notes = pl.shadows.last_frame.lights[0].notes
+    assert "zpass: the camera is outside every shadow volume" in notes
+    assert pl.shadows.measure(scene.light).misclassified <= MASK_BOUNDS["volume"]

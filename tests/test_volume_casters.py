@@ -7,7 +7,13 @@ import pyvista as pv
 from pvshadows.geometry.closed import OpenMeshError, edge_defects
 from pvshadows.geometry.silhouette import volume_geometry
 from pvshadows.geometry.volume_casters import batches, prepare_volume_mesh, winding_number
-from pvshadows.pipeline.volume_zmode import hull_touches_box, light_region
+from pvshadows.pipeline.volume_zmode import (
+    choose_zmode,
+    hull_touches_box,
+    light_region,
+    near_region,
+)
+from pvshadows.scene.view import FrameView
 
 
 def faces(mesh):
@@ -97,3 +103,31 @@ def test_directional_light_region_reaches_past_the_box():
     assert hull_touches_box(swept, box)
     swept = light_region(np.array([0, 0, 1.0, 0]), region, box)
     assert not hull_touches_box(swept, box)
+
+
+@pytest.mark.parametrize("light", [(0.5, -0.3, 6.0, 1.0), (0.4, 0.2, 1.0, 0.0)])
+def test_the_zmode_of_many_casters_is_the_first_whose_hull_test_meets_it(light):
+    # choose_zmode tests every box at once before testing one by one: the answer and
+    # the caster it names must be those of testing each caster in turn.
+    light = np.array(light)
+    pl = pv.Plotter(off_screen=True, window_size=(200, 150))
+    pl.add_mesh(pv.Sphere())
+    rng = np.random.default_rng(3)
+    named = 0
+    for trial in range(40):
+        pl.camera_position = [tuple(rng.uniform(-4, 4, 3)), (0, 0, 0), (0, 0, 1)]
+        casters = []
+        for i in range(int(rng.integers(2, 7))):
+            low = rng.uniform(-4, 3, 3)
+            casters.append((f"box {i}", np.array([low, low + rng.uniform(0.2, 2.0, 3)])))
+        region = near_region(pl.renderer)
+        touched = [
+            n for n, box in casters if hull_touches_box(light_region(light, region, box), box)
+        ]
+        expected = touched[0] if touched else None
+        zmode, why = choose_zmode("auto", light, pl.renderer, casters, FrameView.of(pl.renderer))
+        assert zmode == ("zpass" if expected is None else "zfail"), trial
+        if expected is not None:
+            assert f"shadow volume of {expected} " in why
+            named += 1
+    assert 5 <= named <= 35  # both answers were tested

@@ -121,6 +121,10 @@ class PlanMemo:
         (:meth:`repose`), over all frames; counted in :attr:`planned` too.
     listings : int
         Times a renderer's lights were listed from VTK (:meth:`lights_of`).
+    zmodes_chosen : int
+        Times a kept volume plan chose z-pass or z-fail again
+        (:meth:`choose_zmode`): only when the camera or the renderer's
+        hidden-line removal changed.
     """
 
     def __init__(self) -> None:
@@ -130,6 +134,7 @@ class PlanMemo:
         self.poses_read = 0
         self.reposed = 0
         self.listings = 0
+        self.zmodes_chosen = 0
         self._lights: tuple[vtk.vtkLightCollection, int, tuple[vtk.vtkLight, ...]] | None = None
         self._poses: dict[int, tuple[vtk.vtkLight, int, LightPose]] = {}
         self._tested = 0
@@ -140,12 +145,16 @@ class PlanMemo:
         self._in_view: tuple[Snapshot, FrameView, ViewSight] | None = None
         #: The lights of the last :meth:`keep_only`.
         self._kept_for: tuple[vtk.vtkLight, ...] = ()
+        #: What each kept volume plan last chose its z-mode for: the cast, view and
+        #: hidden-line removal.
+        self._zmodes: dict[int, tuple[VolumeCast, FrameView, bool]] = {}
 
     def forget(self) -> None:
         """Plan every light again next frame."""
         self._plans = {}
         self._poses = {}
         self._in_view = None
+        self._zmodes = {}
 
     def lights_of(self, renderer: vtk.vtkRenderer) -> tuple[vtk.vtkLight, ...]:
         """Return a renderer's lights in order, listed again only when its collection changed.
@@ -364,6 +373,38 @@ class PlanMemo:
             del self._plans[key]
         for key in set(self._poses) - alive:
             del self._poses[key]
+        for key in set(self._zmodes) - alive:
+            del self._zmodes[key]
+
+    def choose_zmode(
+        self, cast: VolumeCast, renderer: vtk.vtkRenderer, view: FrameView, warned: set[tuple]
+    ) -> None:
+        """Choose a kept volume plan's z-pass or z-fail again where the camera may have changed it.
+
+        What decides (:func:`~pvshadows.pipeline.volume_plan.choose_volume_zmode`)
+        is the camera, the renderer's hidden-line removal and the plan's own
+        light and closed casters: the same cast seen from the same view
+        (:meth:`FrameView.of` hands back last frame's while the camera, aspect
+        and size hold) keeps the choice it made.
+
+        Parameters
+        ----------
+        cast : VolumeCast
+            The light's kept cast.
+        renderer : vtk.vtkRenderer
+            The renderer, whose camera decides.
+        view : FrameView
+            This frame's view of that camera.
+        warned : set of tuple
+            Warnings already given, kept between frames.
+        """
+        key = (cast, view, bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(renderer)))
+        kept = self._zmodes.get(id(cast.light))
+        if kept is not None and kept[0] is key[0] and kept[1] is key[1] and kept[2] == key[2]:
+            return
+        choose_volume_zmode(cast, cast.volume, renderer, warned, view)
+        self._zmodes[id(cast.light)] = key
+        self.zmodes_chosen += 1
 
 
 def _moved_out_of_reach(
@@ -503,7 +544,8 @@ def plan_frame(
                     memo.keep(inputs, plan, use, in_view, reached)
             planned += 1
         elif isinstance(plan.cast, VolumeCast):
-            choose_volume_zmode(plan.cast, plan.cast.volume, renderer, warned)
+            assert memo is not None  # plans are recalled from a memo only
+            memo.choose_zmode(plan.cast, renderer, view, warned)
         if vtk.vtkLight.GetSwitch(light):
             vtk_index += 1
         plans.append(plan)

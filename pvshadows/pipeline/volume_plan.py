@@ -24,6 +24,7 @@ from pvshadows.pipeline.volume_zmode import choose_zmode
 from pvshadows.scene.actor_state import ActorState, hides_what_is_behind
 from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import vtk_id
+from pvshadows.scene.view import FrameView
 from pvshadows.techniques import TECHNIQUE_CLASSES
 from pvshadows.techniques.volume_light import (
     enclosing_caster,
@@ -98,7 +99,11 @@ def plan_volume(
 
 
 def choose_volume_zmode(
-    plan: Cast, volume: VolumePlan, renderer: vtk.vtkRenderer, warned: set[tuple]
+    plan: Cast,
+    volume: VolumePlan,
+    renderer: vtk.vtkRenderer,
+    warned: set[tuple],
+    view: FrameView | None = None,
 ) -> None:
     """Choose z-pass or z-fail for the renderer's camera now; say it in ``plan.notes``.
 
@@ -118,12 +123,15 @@ def choose_volume_zmode(
         The renderer, whose camera decides.
     warned : set of tuple
         Warnings already given, kept between frames.
+    view : FrameView, optional
+        This frame's view of the renderer's camera, whose inverse projection
+        is taken (:func:`~pvshadows.pipeline.volume_zmode.near_region`).
     """
     if volume.enclosing is not None:
         return
-    zmode, why = _zmode_for(plan.settings.zmode, volume, renderer)
+    zmode, why = _zmode_for(plan.settings.zmode, volume, renderer, view)
     if plan.settings.zmode == "zpass":
-        auto, risk = _zmode_for("auto", volume, renderer)
+        auto, risk = _zmode_for("auto", volume, renderer, view)
         if auto == "zfail":
             why = f"{why}, although z-pass may miscount here: {risk}"
             key = ("zpass forced", vtk_id(plan.light), risk)
@@ -144,7 +152,9 @@ def choose_volume_zmode(
     volume.zmode, volume.zmode_reason = zmode, why
 
 
-def _zmode_for(wanted: str, volume: VolumePlan, renderer: vtk.vtkRenderer) -> tuple[str, str]:
+def _zmode_for(
+    wanted: str, volume: VolumePlan, renderer: vtk.vtkRenderer, view: FrameView | None
+) -> tuple[str, str]:
     """Return the counting ``zmode=wanted`` gives a volume plan now, and why."""
     open_to_view = [c.name for c, _ in volume.closed if not hides_what_is_behind(c, renderer)]
     if wanted == "auto" and open_to_view:
@@ -153,7 +163,7 @@ def _zmode_for(wanted: str, volume: VolumePlan, renderer: vtk.vtkRenderer) -> tu
             "through them, which only z-fail counts"
         )
     boxes = [(c.name, c.bounds) for c, _ in volume.closed]
-    return choose_zmode(wanted, volume.light, renderer, boxes)
+    return choose_zmode(wanted, volume.light, renderer, boxes, view)
 
 
 def _fallback(

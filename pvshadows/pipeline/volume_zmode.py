@@ -32,18 +32,27 @@ import numpy as np
 import pyvista as pv
 
 from pvshadows import _vtk as vtk
+from pvshadows.scene.view import FrameView
 
 #: The values ``zmode`` takes.
 ZMODES = ("auto", "zpass", "zfail")
 
 
-def near_region(renderer: vtk.vtkRenderer) -> np.ndarray | None:
+#: The corners of the near plane in clip coordinates.
+_NEAR_CORNERS = np.array([[x, y, -1.0, 1.0] for x in (-1.0, 1.0) for y in (-1.0, 1.0)])
+
+
+def near_region(renderer: vtk.vtkRenderer, view: FrameView | None = None) -> np.ndarray | None:
     """Return the camera position and the four corners of its near-plane rectangle.
 
     Parameters
     ----------
     renderer : vtk.vtkRenderer
         The renderer; its active camera and aspect ratio are read.
+    view : FrameView, optional
+        This frame's view of that camera: its inverse projection
+        (:attr:`FrameView.clip_to_world`) is taken instead of inverting the
+        camera's again.
 
     Returns
     -------
@@ -58,15 +67,19 @@ def near_region(renderer: vtk.vtkRenderer) -> np.ndarray | None:
     >>> near_region(pl.renderer).shape
     (5, 3)
     """
-    camera = renderer.GetActiveCamera()
-    if camera.GetParallelProjection():
+    # VTK's own methods, called on the class: PyVista's wrappers check every attribute
+    camera = vtk.vtkRenderer.GetActiveCamera(renderer)
+    if vtk.vtkCamera.GetParallelProjection(camera):
         return None
-    matrix = camera.GetCompositeProjectionTransformMatrix(renderer.GetTiledAspectRatio(), -1, 1)
-    inverse = np.linalg.inv(np.asarray(pv.array_from_vtkmatrix(matrix), dtype=np.float64))
-    ndc = np.array([[x, y, -1.0, 1.0] for x in (-1.0, 1.0) for y in (-1.0, 1.0)])
-    corners = ndc @ inverse.T
+    if view is None:
+        aspect = vtk.vtkRenderer.GetTiledAspectRatio(renderer)
+        matrix = vtk.vtkCamera.GetCompositeProjectionTransformMatrix(camera, aspect, -1, 1)
+        inverse = np.linalg.inv(np.asarray(pv.array_from_vtkmatrix(matrix), dtype=np.float64))
+    else:
+        inverse = view.clip_to_world
+    corners = _NEAR_CORNERS @ inverse.T
     corners = corners[:, :3] / corners[:, 3:4]
-    return np.vstack([np.array(camera.GetPosition(), dtype=np.float64), corners])
+    return np.vstack([vtk.vtkCamera.GetPosition(camera), corners])
 
 
 def hull_touches_box(points: np.ndarray, box: np.ndarray, margin: float = 1e-9) -> bool:
@@ -165,6 +178,7 @@ def choose_zmode(
     light: np.ndarray,
     renderer: vtk.vtkRenderer,
     casters: Sequence[tuple[str, np.ndarray]],
+    view: FrameView | None = None,
 ) -> tuple[str, str]:
     """Decide between z-pass and z-fail for one light in one frame.
 
@@ -179,6 +193,8 @@ def choose_zmode(
         The renderer (its camera).
     casters : sequence of (str, numpy.ndarray)
         Each volume caster's name and world bounds ``(2, 3)``.
+    view : FrameView, optional
+        This frame's view of the renderer's camera (:func:`near_region`).
 
     Returns
     -------
@@ -201,16 +217,39 @@ def choose_zmode(
     """
     if zmode in ("zpass", "zfail"):
         return zmode, f"{zmode} forced by zmode={zmode!r}"
-    region = near_region(renderer)
+    region = near_region(renderer, view)
     if region is None:
         return "zpass", (
             "parallel projection: the volumes end beyond the scene instead of at infinity, "
             "and the view rays start outside every one of them"
         )
-    for name, box in casters:
+    for name, box in _maybe_touched(light, region, casters):
         if hull_touches_box(light_region(light, region, box), box):
             return "zfail", (
                 f"the camera may be inside the shadow volume of {name} (the region between "
                 "the light and the camera's near plane meets its bounds)"
             )
     return "zpass", "the camera is outside every shadow volume"
+
+
+def _maybe_touched(
+    light: np.ndarray, region: np.ndarray, casters: Sequence[tuple[str, np.ndarray]]
+) -> list[tuple[str, np.ndarray]]:
+    """Return the casters, in order, whose boxes the box around the light's region may meet.
+
+    One test over every caster at once: around a hull that holds each
+    caster's :func:`light_region` (a directional light's sweep as long as
+    the longest), with a slack no smaller than :func:`hull_touches_box`
+    allows any of them. A caster left out is one whose own test would find
+    the boxes apart; the others are tested one by one.
+    """
+    if len(casters) < 2:
+        return list(casters)
+    boxes = np.array([box for _, box in casters], dtype=np.float64)
+    corners = boxes.reshape(-1, 3)
+    hull = light_region(light, region, np.array([corners.min(axis=0), corners.max(axis=0)]))
+    slack = 1e-9 * max(float(np.abs(hull).max()), float(np.abs(boxes).max()), 1e-300)
+    apart = (hull.min(axis=0) > boxes[:, 1] + slack).any(axis=1) | (
+        hull.max(axis=0) < boxes[:, 0] - slack
+    ).any(axis=1)
+    return [caster for caster, away in zip(casters, apart.tolist(), strict=True) if not away]

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 from typing import ClassVar, Protocol, TypeVar
 
 from pvshadows import _vtk as vtk
+from pvshadows._cached import cached
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.timing import PassTimer
@@ -57,10 +58,15 @@ class FrameContext:
         The tile being drawn of a scaled screenshot, or the larger framebuffer
         of an SSAA pass (:func:`pvshadows.scene.render_target.render_target`).
         """
-        return render_target(self.renderer).size
+        return self._target.size
 
     def target(self) -> RenderTarget:
         """Return the rectangle the renderer's actors are drawn into this frame."""
+        return self._target
+
+    @cached
+    def _target(self) -> RenderTarget:
+        """The render target, read once: a context is made for each one VTK draws into."""
         return render_target(self.renderer)
 
 

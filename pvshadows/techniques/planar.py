@@ -56,6 +56,12 @@ class _LightState:
     key: tuple | None = None
     frame: int = -1
     plane_actor: str | None = None
+    #: What the mask was last brought up to date for (the cast, snapshot, view and
+    #: target size) and the notes that said about it (:meth:`PlanarTechnique.again`).
+    held: tuple | None = None
+    #: The cast last drawn, with its plane facing the light and the casters that
+    #: may cast onto it: the camera changes neither.
+    flattened: tuple | None = None
 
 
 def may_cast(caster: ActorState, plane: np.ndarray, light: np.ndarray) -> bool:
@@ -231,6 +237,15 @@ class PlanarTechnique:
             The mask pass, run, reused or skipped. The receiving plane is the
             planner's (``plan.plane``).
         """
+        said = len(plan.notes)
+        reports = self._update(plan, context)
+        state = self._lights.get(plan.key)
+        if state is not None:
+            held = (plan, context.snapshot, context.view, context.viewport_size())
+            state.held = (*held, tuple(plan.notes[said:]))
+        return reports
+
+    def _update(self, plan: PlanarCast, context: FrameContext) -> list[PassReport]:
         receivers = context.snapshot.receivers
         choice = plan.plane
         width, height = context.viewport_size()
@@ -268,11 +283,14 @@ class PlanarTechnique:
                 "it is unlit, nothing to flatten"
             )
             return [PassReport(_PASS, "skipped", "the camera sees the plane's unlit side")]
-        casters = [
-            c
-            for c in plan.casters
-            if vtk_id(c.actor) != state.plane_actor and may_cast(c, plane, light)
-        ]
+        if state.flattened is None or state.flattened[0] is not plan:
+            between = [
+                c
+                for c in plan.casters
+                if vtk_id(c.actor) != state.plane_actor and may_cast(c, plane, light)
+            ]
+            state.flattened = (plan, between)
+        casters = state.flattened[1]
         if not casters:
             if state.key != ("lit",):
                 self._pass.fill_lit(state.mask)
@@ -289,14 +307,7 @@ class PlanarTechnique:
             tuple((*c.key(), c.transmittance) for c in casters),
         )
         if key == state.key:
-            return [
-                PassReport(
-                    _PASS,
-                    "reused",
-                    f"camera, light, plane and casters unchanged since frame {state.frame}; "
-                    "the mask is screen-space, so a moving camera redraws it",
-                )
-            ]
+            return [_reused(state)]
         record = PassReport(
             _PASS, "run", f"{len(casters)} of {len(plan.casters)} casters flattened onto {name}"
         )
@@ -331,8 +342,46 @@ class PlanarTechnique:
     def again(
         self, plan: Cast, context: FrameContext, last: LightFrame, same_view: bool
     ) -> LightFrame | None:
-        """Return ``None``: the light's mask of flattened casters is drawn for every frame."""
-        return None
+        """Return a light's last :class:`LightFrame` while its mask is last frame's.
+
+        The mask is the casters flattened onto the plan's plane and seen from
+        the camera: it holds for the very cast it was drawn for, the same
+        snapshot of the actors, the same view and the same render target.
+        What the technique noted about the light then is noted again.
+
+        Parameters
+        ----------
+        plan : Cast
+            The light's cast, the one ``last`` was made for.
+        context : FrameContext
+            This frame's camera and actors.
+        last : LightFrame
+            What the light was given last frame.
+        same_view : bool
+            Whether the camera is last frame's.
+
+        Returns
+        -------
+        LightFrame or None
+            Last frame's shading, textures and entry, a mask drawn then
+            reported reused; ``None`` when the mask must be brought up to date.
+        """
+        state = self._lights.get(plan.key)
+        if not same_view or state is None or state.held is None:
+            return None
+        cast, snapshot, view, size, notes = state.held
+        if (
+            cast is not plan
+            or snapshot is not context.snapshot
+            or view is not context.view
+            or size != context.viewport_size()
+        ):
+            return None
+        plan.notes.extend(notes)
+        if last.again:
+            return last  # its reports as well: nothing in them changed
+        passes = [_reused(state) if p.status == "run" else p for p in last.passes]
+        return LightFrame(passes, last.shading, last.entry, last.samplers, again=True)
 
     def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
         """Fill the light's block entry (the facing test's light); return its mask's texture.
@@ -380,3 +429,13 @@ class PlanarTechnique:
         """Release every mask, the framebuffer and the program."""
         self.keep_only([])
         self._pass.release()
+
+
+def _reused(state: _LightState) -> PassReport:
+    """Return the report of a light's mask that is still right."""
+    return PassReport(
+        _PASS,
+        "reused",
+        f"camera, light, plane and casters unchanged since frame {state.frame}; "
+        "the mask is screen-space, so a moving camera redraws it",
+    )

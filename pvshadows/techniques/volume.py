@@ -86,6 +86,9 @@ class _LightState:
     zmode: str = ""
     draws: list[VolumeDraw] = field(default_factory=list)
     fallback: Fallback | None = None
+    #: What the mask was last right for: the cast, snapshot, view, target size and
+    #: hidden-line removal (:meth:`VolumeTechnique.again` compares them).
+    held: tuple | None = None
 
 
 class VolumeTechnique:
@@ -110,6 +113,10 @@ class VolumeTechnique:
         self._depth_frame = -1
         self._fallbacks = OpenCasterFallbacks(window)
         self._context: FrameContext | None = None
+        #: Each light in each caster's model coordinates, and whether the caster's
+        #: matrix mirrors, by caster and light: this frame's, and last frame's.
+        self._in_model: dict[tuple[int, bytes], tuple[ActorState, np.ndarray, bool]] = {}
+        self._in_model_before: dict[tuple[int, bytes], tuple[ActorState, np.ndarray, bool]] = {}
 
     # -- per light ------------------------------------------------------------------------
 
@@ -132,6 +139,7 @@ class VolumeTechnique:
         """
         self._context = context
         width, height = context.viewport_size()
+        hidden = bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(context.renderer))
         light_id = plan.key
         if width < 1 or height < 1:
             dropped = self._lights.pop(light_id, None)
@@ -146,6 +154,7 @@ class VolumeTechnique:
         closed, light, zmode, extrude = volume.closed, volume.light, volume.zmode, volume.extrude
         reports: list[PassReport] = []
         state.fallback = volume.fallback
+        state.held = (plan, context.snapshot, context.view, (width, height), hidden)
         if volume.enclosing is not None:
             key: tuple = ("inside", plan.pose.key(), volume.enclosing.key())
             if key != state.key:
@@ -164,18 +173,11 @@ class VolumeTechnique:
             camera.tobytes(),
             (width, height),
             tuple((*c.key(), c.faces_drawn) for c in context.snapshot.actors),
-            bool(context.renderer.GetUseHiddenLineRemoval()),
+            hidden,
             tuple((*c.key(), c.transmittance) for c, _ in closed),
         )
         if key == state.key:
-            reports.append(
-                PassReport(
-                    f"stencil count ({zmode}, {extrude} extrusion)",
-                    "reused",
-                    f"camera, light and actors unchanged since frame {state.frame}: "
-                    "mask still right",
-                )
-            )
+            reports.append(_reused(state, extrude))
             return reports + self._fallbacks.update(state.fallback, context)
         if self._depth_frame != context.frame:
             reports.append(self._depth_pass(context, camera, width, height))
@@ -255,10 +257,7 @@ class VolumeTechnique:
         rebuilt, reused, seconds = 0, 0, 0.0
         for number, (caster, mesh) in enumerate(closed):
             model = caster.model_matrix()
-            light_model = np.linalg.solve(model, light)
-            if light_model[3] != 0.0:
-                light_model = np.append(light_model[:3] / light_model[3], 1.0)
-            mirrored = bool(np.linalg.det(model[:3, :3]) < 0.0)
+            light_model, mirrored = self._light_in_model(caster, light)
             # Model units that are at least `reach` world units in every direction.
             extrude_to = (
                 reach / np.linalg.svd(model[:3, :3], compute_uv=False)[-1] if reach else 0.0
@@ -416,8 +415,55 @@ class VolumeTechnique:
     def again(
         self, plan: Cast, context: FrameContext, last: LightFrame, same_view: bool
     ) -> LightFrame | None:
-        """Return ``None``: the light's screen mask (a stencil count) is drawn for every frame."""
-        return None
+        """Return a light's last :class:`LightFrame` while its mask is last frame's.
+
+        The mask counts the closed casters' volumes against the scene's depth
+        seen from the camera, so it holds for the very cast it was made for
+        (the planner hands that again only while the light and its casters
+        hold, and chooses the same z-mode for the same view), the same
+        snapshot of the actors, the same view and render target and the same
+        hidden-line removal. A light whose open casters cast from a fallback
+        map is brought up to date: that map's technique decides.
+
+        Parameters
+        ----------
+        plan : Cast
+            The light's cast, the one ``last`` was made for.
+        context : FrameContext
+            This frame's camera and actors.
+        last : LightFrame
+            What the light was given last frame.
+        same_view : bool
+            Whether the camera is last frame's.
+
+        Returns
+        -------
+        LightFrame or None
+            Last frame's shading, textures and entry, the mask reported
+            reused; ``None`` when the mask must be brought up to date.
+        """
+        state = self._lights.get(plan.key)
+        if not same_view or state is None or state.fallback is not None or state.held is None:
+            return None
+        cast, snapshot, view, size, hidden = state.held
+        if (
+            cast is not plan
+            or snapshot is not context.snapshot
+            or view is not context.view
+            or size != context.viewport_size()
+            or hidden != bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(context.renderer))
+        ):
+            return None
+        self._context = context
+        if last.again:
+            return last  # its reused pass's report as well: nothing in it changed
+        assert isinstance(plan, VolumeCast)  # what the volume technique is given
+        reused = (
+            PassReport("shadow mask", "reused", "light still enclosed")
+            if plan.volume.enclosing is not None
+            else _reused(state, plan.volume.extrude)
+        )
+        return LightFrame([reused], last.shading, last.entry, last.samplers, again=True)
 
     def activate(self, plan: Cast, context: FrameContext, entry: LightEntry) -> dict[str, object]:
         """Fill the light's block entry (facing test, a fallback's map); return its textures.
@@ -446,9 +492,27 @@ class VolumeTechnique:
             uniforms.update(self._fallbacks.technique(name).activate(subplan, context, entry))
         return uniforms
 
+    def _light_in_model(self, caster: ActorState, light: np.ndarray) -> tuple[np.ndarray, bool]:
+        """Return a light in a caster's model coordinates and whether its matrix mirrors.
+
+        Worked out again only for a caster state or a light not seen this
+        frame or the last: a camera that moves changes neither.
+        """
+        key = (id(caster), light.tobytes())
+        kept = self._in_model.get(key) or self._in_model_before.get(key)
+        if kept is None or kept[0] is not caster:
+            model = caster.model_matrix()
+            light_model = np.linalg.solve(model, light)
+            if light_model[3] != 0.0:
+                light_model = np.append(light_model[:3] / light_model[3], 1.0)
+            kept = (caster, light_model, bool(np.linalg.det(model[:3, :3]) < 0.0))
+        self._in_model[key] = kept
+        return kept[1], kept[2]
+
     def end_frame(self) -> None:
         """End the frame of the open casters' fallback techniques."""
         self._fallbacks.end_frame()
+        self._in_model_before, self._in_model = self._in_model, {}
 
     def draw_debug(self, context: FrameContext) -> None:
         """Draw this frame's volumes translucent over the finished frame (``show_volumes``).
@@ -512,3 +576,12 @@ class VolumeTechnique:
         self.keep_only([])
         self._fallbacks.release()
         self._passes.release()
+
+
+def _reused(state: _LightState, extrude: str) -> PassReport:
+    """Return the report of a light's stencil count whose mask is still right."""
+    return PassReport(
+        f"stencil count ({state.zmode}, {extrude} extrusion)",
+        "reused",
+        f"camera, light and actors unchanged since frame {state.frame}: mask still right",
+    )
