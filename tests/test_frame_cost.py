@@ -1086,3 +1086,38 @@ def test_a_volume_light_chooses_zpass_or_zfail_again_only_for_a_new_camera_or_hi
     notes = pl.shadows.last_frame.lights[0].notes
     assert "zpass: the camera is outside every shadow volume" in notes
     assert pl.shadows.measure(scene.light).misclassified <= MASK_BOUNDS["volume"]
+
+
+def test_a_kept_zpass_holds_while_the_camera_keeps_its_room_and_never_inside_a_volume():
+    from pvshadows.pipeline.volume_zmode import choose_zmode
+
+    scene = standard_scene(window_size=(200, 150), light="spot")
+    pl = scene.plotter
+    pl.shadows.enable(technique="volume")
+    draw(pl)
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    volume = shadows.technique("volume")
+    # The camera walks into the box's shadow (light at (0.3, -0.2, 3.5), box round
+    # (-2, -0.3, 1.7)): every frame's choice is the full test's for that frame's view.
+    answers = []
+    for t in np.linspace(0.0, 1.0, 40):
+        pl.camera.position = (1 - t) * np.array([-8.0, -6.0, 1.0]) + t * np.array(
+            [-3.15, -0.35, 0.8]
+        )
+        draw(pl)
+        cast = shadows.plans[0].cast
+        view = shadows._context.view
+        boxes = cast.volume.caster_boxes
+        expected, _ = choose_zmode("auto", cast.volume.light, pl.renderer, boxes, view)
+        assert volume.zmode_of(scene.light) == expected, t
+        answers.append(expected)
+    assert answers[0] == "zpass" and answers[-1] == "zfail"
+    pl.camera.position = (11.0, -12.5, 9.5)  # back out, then a slow orbit
+    draw(pl)
+    chosen = shadows.memo.zmodes_chosen
+    for _ in range(10):  # far from every shadow volume
+        pl.camera.Azimuth(0.5)
+        draw(pl)
+        assert volume.zmode_of(scene.light) == "zpass"
+    assert 1 <= shadows.memo.zmodes_chosen - chosen <= 5

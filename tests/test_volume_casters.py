@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 import pyvista as pv
 
+from pvshadows.geometry.boxes import CasterBoxes
 from pvshadows.geometry.closed import OpenMeshError, edge_defects
 from pvshadows.geometry.silhouette import volume_geometry
 from pvshadows.geometry.volume_casters import batches, prepare_volume_mesh, winding_number
@@ -12,6 +13,7 @@ from pvshadows.pipeline.volume_zmode import (
     hull_touches_box,
     light_region,
     near_region,
+    zpass_clearance,
 )
 from pvshadows.scene.view import FrameView
 
@@ -131,3 +133,34 @@ def test_the_zmode_of_many_casters_is_the_first_whose_hull_test_meets_it(light):
             assert f"shadow volume of {expected} " in why
             named += 1
     assert 5 <= named <= 35  # both answers were tested
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_within_its_zpass_clearance_the_near_region_meets_no_caster(seed):
+    # A kept z-pass holds while every point of the near region moves less than the
+    # clearance: then the full test must find every box apart from the light's region.
+    rng = np.random.default_rng(seed)
+    kept = 0
+    for _ in range(60):
+        light = np.append(rng.uniform(-3, 3, 3), 1.0)
+        lows = rng.uniform(-4, 3, (int(rng.integers(1, 5)), 3))
+        casters = [
+            (f"box {i}", np.array([low, low + rng.uniform(0.2, 2, 3)]))
+            for i, low in enumerate(lows)
+        ]
+        region = rng.uniform(-6, 6, 3) + rng.uniform(-0.3, 0.3, (5, 3))
+        room = zpass_clearance(light, region, CasterBoxes.of(casters))
+        touching = any(hull_touches_box(light_region(light, region, b), b) for _, b in casters)
+        assert not (touching and room > 0)
+        if room == 0.0:
+            continue
+        kept += 1
+        for _ in range(5):
+            moved = region + rng.uniform(-1, 1, (5, 3)) * 0.999 * room
+            assert not any(hull_touches_box(light_region(light, moved, b), b) for _, b in casters)
+    assert kept >= 5
+    box = CasterBoxes.of([("box", np.array([[-1.0, -1, 0], [1, 1, 2]]))])
+    far = np.full((5, 3), 9.0)
+    assert zpass_clearance(np.array([0, 0, 1.0, 0]), far, box) == 0.0  # directional: never
+    assert zpass_clearance(np.array([9, 9, 9, 1.0]), None, box) == 0.0  # parallel projection
+    assert zpass_clearance(np.array([9, 9, 9, 1.0]), far, CasterBoxes.of([])) == np.inf

@@ -12,6 +12,7 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows._cached import cached
+from pvshadows.geometry.boxes import CasterBoxes
 from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.scene.actor_state import ActorState
@@ -71,6 +72,11 @@ class VolumePlan:
     extrude: str = "gpu"
     fallback: tuple[str, Cast] | None = None
     zmode_reason: str = ""
+
+    @cached
+    def caster_boxes(self) -> CasterBoxes:
+        """The closed casters' names and world bounds, stacked once for each z-mode test."""
+        return CasterBoxes.of([(caster.name, caster.bounds) for caster, _ in self.closed])
 
 
 @dataclass

@@ -36,7 +36,7 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.reach import ReachCache, same_objects
 from pvshadows.pipeline.sight import ViewSight
-from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume
+from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume, zpass_kept
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.culling import box_around, box_corners
 from pvshadows.scene.light_kit import KeyLights, unshadowed_reason
@@ -123,8 +123,9 @@ class PlanMemo:
         Times a renderer's lights were listed from VTK (:meth:`lights_of`).
     zmodes_chosen : int
         Times a kept volume plan chose z-pass or z-fail again
-        (:meth:`choose_zmode`): only when the camera or the renderer's
-        hidden-line removal changed.
+        (:meth:`choose_zmode`): only when the renderer's hidden-line removal
+        changed, or the camera changed and z-pass was not known to hold
+        there.
     """
 
     def __init__(self) -> None:
@@ -146,8 +147,10 @@ class PlanMemo:
         #: The lights of the last :meth:`keep_only`.
         self._kept_for: tuple[vtk.vtkLight, ...] = ()
         #: What each kept volume plan last chose its z-mode for: the cast, view and
-        #: hidden-line removal.
-        self._zmodes: dict[int, tuple[VolumeCast, FrameView, bool]] = {}
+        #: hidden-line removal, and where z-pass holds (:func:`zpass_kept`).
+        self._zmodes: dict[
+            int, tuple[VolumeCast, FrameView, bool, tuple[np.ndarray, float] | None]
+        ] = {}
 
     def forget(self) -> None:
         """Plan every light again next frame."""
@@ -385,7 +388,10 @@ class PlanMemo:
         is the camera, the renderer's hidden-line removal and the plan's own
         light and closed casters: the same cast seen from the same view
         (:meth:`FrameView.of` hands back last frame's while the camera, aspect
-        and size hold) keeps the choice it made.
+        and size hold) keeps the choice it made, and so does a z-pass made
+        with room to spare while the camera's near region stays within that
+        room (:func:`~pvshadows.pipeline.volume_plan.zpass_kept`): the
+        choice would come out the same.
 
         Parameters
         ----------
@@ -398,13 +404,22 @@ class PlanMemo:
         warned : set of tuple
             Warnings already given, kept between frames.
         """
-        key = (cast, view, bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(renderer)))
+        hidden = bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(renderer))
         kept = self._zmodes.get(id(cast.light))
-        if kept is not None and kept[0] is key[0] and kept[1] is key[1] and kept[2] == key[2]:
-            return
+        if kept is not None and kept[0] is cast and kept[2] == hidden:
+            if kept[1] is view or _still_clear(kept[3], view):
+                return
         choose_volume_zmode(cast, cast.volume, renderer, warned, view)
-        self._zmodes[id(cast.light)] = key
+        self._zmodes[id(cast.light)] = (cast, view, hidden, zpass_kept(cast, cast.volume, view))
         self.zmodes_chosen += 1
+
+
+def _still_clear(kept: tuple[np.ndarray, float] | None, view: FrameView) -> bool:
+    """Whether the camera's near region stayed within the room a kept z-pass had."""
+    if kept is None:
+        return False
+    region = view.near_region
+    return region is not None and float(np.abs(region - kept[0]).max()) < kept[1]
 
 
 def _moved_out_of_reach(

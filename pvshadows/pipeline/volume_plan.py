@@ -17,10 +17,12 @@ import warnings
 from collections.abc import Callable
 from dataclasses import replace
 
+import numpy as np
+
 from pvshadows import _vtk as vtk
 from pvshadows.model.plan import FALLBACK_TECHNIQUES, SERVES, Cast, VolumePlan
 from pvshadows.pipeline.cube_passes import cube_passes
-from pvshadows.pipeline.volume_zmode import choose_zmode
+from pvshadows.pipeline.volume_zmode import choose_zmode, zpass_clearance
 from pvshadows.scene.actor_state import ActorState, hides_what_is_behind
 from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import vtk_id
@@ -152,6 +154,35 @@ def choose_volume_zmode(
     volume.zmode, volume.zmode_reason = zmode, why
 
 
+def zpass_kept(cast: Cast, volume: VolumePlan, view: FrameView) -> tuple[np.ndarray, float] | None:
+    """Return the near region a volume plan chose z-pass at and how far it may move, if any.
+
+    Parameters
+    ----------
+    cast : Cast
+        The light's cast.
+    volume : VolumePlan
+        Its volume plan, its z-mode just chosen for ``view``
+        (:func:`choose_volume_zmode`).
+    view : FrameView
+        The view it was chosen for.
+
+    Returns
+    -------
+    tuple or None
+        ``(near region, clearance)``
+        (:func:`~pvshadows.pipeline.volume_zmode.zpass_clearance`): while
+        no point of the camera's near region moves further than that, the
+        choice and its note hold. ``None`` where the choice must be made
+        again at every view (z-fail, or z-pass by a narrow margin).
+    """
+    if volume.enclosing is not None or volume.zmode != "zpass" or cast.settings.zmode == "zfail":
+        return None
+    region = view.near_region
+    clearance = zpass_clearance(volume.light, region, volume.caster_boxes)
+    return (region, clearance) if region is not None and clearance > 0.0 else None
+
+
 def _zmode_for(
     wanted: str, volume: VolumePlan, renderer: vtk.vtkRenderer, view: FrameView | None
 ) -> tuple[str, str]:
@@ -162,8 +193,7 @@ def _zmode_for(
             f"{open_to_view[0]} is drawn without faces: the camera sees into its shadow volume "
             "through them, which only z-fail counts"
         )
-    boxes = [(c.name, c.bounds) for c, _ in volume.closed]
-    return choose_zmode(wanted, volume.light, renderer, boxes, view)
+    return choose_zmode(wanted, volume.light, renderer, volume.caster_boxes, view)
 
 
 def _fallback(

@@ -25,21 +25,18 @@ all of them, and z-pass is right.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from itertools import combinations
 
 import numpy as np
-import pyvista as pv
 
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.boxes import CasterBoxes
 from pvshadows.scene.view import FrameView
 
 #: The values ``zmode`` takes.
 ZMODES = ("auto", "zpass", "zfail")
-
-
-#: The corners of the near plane in clip coordinates.
-_NEAR_CORNERS = np.array([[x, y, -1.0, 1.0] for x in (-1.0, 1.0) for y in (-1.0, 1.0)])
 
 
 def near_region(renderer: vtk.vtkRenderer, view: FrameView | None = None) -> np.ndarray | None:
@@ -50,9 +47,8 @@ def near_region(renderer: vtk.vtkRenderer, view: FrameView | None = None) -> np.
     renderer : vtk.vtkRenderer
         The renderer; its active camera and aspect ratio are read.
     view : FrameView, optional
-        This frame's view of that camera: its inverse projection
-        (:attr:`FrameView.clip_to_world`) is taken instead of inverting the
-        camera's again.
+        This frame's view of that camera, whose :attr:`FrameView.near_region`
+        is taken (made once per view) instead of reading the camera again.
 
     Returns
     -------
@@ -67,19 +63,7 @@ def near_region(renderer: vtk.vtkRenderer, view: FrameView | None = None) -> np.
     >>> near_region(pl.renderer).shape
     (5, 3)
     """
-    # VTK's own methods, called on the class: PyVista's wrappers check every attribute
-    camera = vtk.vtkRenderer.GetActiveCamera(renderer)
-    if vtk.vtkCamera.GetParallelProjection(camera):
-        return None
-    if view is None:
-        aspect = vtk.vtkRenderer.GetTiledAspectRatio(renderer)
-        matrix = vtk.vtkCamera.GetCompositeProjectionTransformMatrix(camera, aspect, -1, 1)
-        inverse = np.linalg.inv(np.asarray(pv.array_from_vtkmatrix(matrix), dtype=np.float64))
-    else:
-        inverse = view.clip_to_world
-    corners = _NEAR_CORNERS @ inverse.T
-    corners = corners[:, :3] / corners[:, 3:4]
-    return np.vstack([vtk.vtkCamera.GetPosition(camera), corners])
+    return (view if view is not None else FrameView.of(renderer)).near_region
 
 
 def hull_touches_box(points: np.ndarray, box: np.ndarray, margin: float = 1e-9) -> bool:
@@ -177,7 +161,7 @@ def choose_zmode(
     zmode: str,
     light: np.ndarray,
     renderer: vtk.vtkRenderer,
-    casters: Sequence[tuple[str, np.ndarray]],
+    casters: Sequence[tuple[str, np.ndarray]] | CasterBoxes,
     view: FrameView | None = None,
 ) -> tuple[str, str]:
     """Decide between z-pass and z-fail for one light in one frame.
@@ -191,8 +175,9 @@ def choose_zmode(
         direction towards a directional light, in world coordinates.
     renderer : vtk.vtkRenderer
         The renderer (its camera).
-    casters : sequence of (str, numpy.ndarray)
-        Each volume caster's name and world bounds ``(2, 3)``.
+    casters : sequence of (str, numpy.ndarray) or CasterBoxes
+        Each volume caster's name and world bounds ``(2, 3)``, or the same
+        stacked once (:class:`CasterBoxes`).
     view : FrameView, optional
         This frame's view of the renderer's camera (:func:`near_region`).
 
@@ -223,19 +208,19 @@ def choose_zmode(
             "parallel projection: the volumes end beyond the scene instead of at infinity, "
             "and the view rays start outside every one of them"
         )
-    for name, box in _maybe_touched(light, region, casters):
+    boxes = casters if isinstance(casters, CasterBoxes) else CasterBoxes.of(casters)
+    for number in _maybe_touched(light, region, boxes):
+        box = boxes.box(number)
         if hull_touches_box(light_region(light, region, box), box):
             return "zfail", (
-                f"the camera may be inside the shadow volume of {name} (the region between "
-                "the light and the camera's near plane meets its bounds)"
+                f"the camera may be inside the shadow volume of {boxes.names[number]} (the "
+                "region between the light and the camera's near plane meets its bounds)"
             )
     return "zpass", "the camera is outside every shadow volume"
 
 
-def _maybe_touched(
-    light: np.ndarray, region: np.ndarray, casters: Sequence[tuple[str, np.ndarray]]
-) -> list[tuple[str, np.ndarray]]:
-    """Return the casters, in order, whose boxes the box around the light's region may meet.
+def _maybe_touched(light: np.ndarray, region: np.ndarray, boxes: CasterBoxes) -> list[int]:
+    """Return the numbers of the casters, in order, whose boxes the light's region may meet.
 
     One test over every caster at once: around a hull that holds each
     caster's :func:`light_region` (a directional light's sweep as long as
@@ -243,13 +228,59 @@ def _maybe_touched(
     allows any of them. A caster left out is one whose own test would find
     the boxes apart; the others are tested one by one.
     """
-    if len(casters) < 2:
-        return list(casters)
-    boxes = np.array([box for _, box in casters], dtype=np.float64)
-    corners = boxes.reshape(-1, 3)
-    hull = light_region(light, region, np.array([corners.min(axis=0), corners.max(axis=0)]))
-    slack = 1e-9 * max(float(np.abs(hull).max()), float(np.abs(boxes).max()), 1e-300)
-    apart = (hull.min(axis=0) > boxes[:, 1] + slack).any(axis=1) | (
-        hull.max(axis=0) < boxes[:, 0] - slack
+    if len(boxes.names) < 2:
+        return list(range(len(boxes.names)))
+    around = np.array([boxes.low.min(axis=0), boxes.high.max(axis=0)])
+    hull = light_region(light, region, around)
+    slack = 1e-9 * max(float(np.abs(hull).max()), boxes.size, 1e-300)
+    apart = (hull.min(axis=0) > boxes.high + slack).any(axis=1) | (
+        hull.max(axis=0) < boxes.low - slack
     ).any(axis=1)
-    return [caster for caster, away in zip(casters, apart.tolist(), strict=True) if not away]
+    return np.flatnonzero(~apart).tolist()
+
+
+def zpass_clearance(light: np.ndarray, region: np.ndarray | None, boxes: CasterBoxes) -> float:
+    """Return how far the camera's near region may move with z-pass still the choice.
+
+    Where the box around a positional light and the near region lies apart
+    from every caster's box (the one-array test of :func:`choose_zmode`
+    then answers z-pass), it stays apart while no point of the region
+    moves by more than half the narrowest gap along any axis: the next
+    test would answer z-pass again, with the same words. Nothing is kept
+    for a directional light (its sweep grows with the region), for a
+    parallel projection, or where some box is within reach of the region.
+
+    Parameters
+    ----------
+    light : numpy.ndarray
+        ``(x, y, z, 1)`` point or spot light, or ``(dx, dy, dz, 0)``.
+    region : numpy.ndarray or None
+        The camera's near region (:func:`near_region`).
+    boxes : CasterBoxes
+        The volume casters' bounds.
+
+    Returns
+    -------
+    float
+        The largest move, per coordinate, of any point of the region
+        (infinite without casters; 0 where nothing may be kept).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.geometry.boxes import CasterBoxes
+    >>> from pvshadows.pipeline.volume_zmode import zpass_clearance
+    >>> boxes = CasterBoxes.of([("box", np.array([[-1.0, -1, 0], [1, 1, 2]]))])
+    >>> region = np.array([[5.0, 0, 1]] * 5)  # the camera 4 from the box
+    >>> round(zpass_clearance(np.array([5.0, 0, 6, 1]), region, boxes), 6)
+    2.0
+    """
+    if region is None or light[3] == 0.0:
+        return 0.0
+    if not boxes.names:
+        return math.inf
+    hull = np.vstack([light[:3] / light[3], region])
+    low, high = hull.min(axis=0), hull.max(axis=0)
+    gaps = np.maximum(low - boxes.high, boxes.low - high).max(axis=1)
+    slack = 1e-9 * max(float(np.abs(hull).max()), boxes.size, 1e-300)
+    return max(0.0, 0.5 * (float(gaps.min()) - 4.0 * slack))

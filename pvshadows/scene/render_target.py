@@ -43,7 +43,7 @@ class RenderTarget:
 
 def _passes(renderer: vtk.vtkRenderer) -> list[vtk.vtkRenderPass]:
     chain: list[vtk.vtkRenderPass] = []
-    current = renderer.GetPass()
+    current = vtk.vtkRenderer.GetPass(renderer)
     while current is not None and len(chain) < 64:
         chain.append(current)
         delegate = getattr(current, "GetDelegatePass", None)
@@ -73,10 +73,11 @@ def tiled_viewport(renderer: vtk.vtkRenderer) -> RenderTarget:
     >>> tiled_viewport(pl.renderers[1])
     RenderTarget(origin=(200, 0), size=(200, 300))
     """
-    window = renderer.GetVTKWindow()
-    width, height = window.GetSize()
-    tile = window.GetTileViewport()
-    port = renderer.GetViewport()
+    # VTK's own methods, called on the class: PyVista's wrappers check every attribute
+    window = vtk.vtkRenderer.GetVTKWindow(renderer)
+    width, height = vtk.vtkWindow.GetSize(window)
+    tile = vtk.vtkWindow.GetTileViewport(window)
+    port = vtk.vtkViewport.GetViewport(renderer)
 
     def clamp(value: float) -> float:
         return min(max(value, 0.0), 1.0)

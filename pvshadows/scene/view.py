@@ -16,6 +16,8 @@ from pvshadows._cached import cached
 from pvshadows.geometry.transforms import from_vtk_matrix
 from pvshadows.scene.culling import clip_planes
 
+#: The corners of the near plane in clip coordinates.
+_NEAR_CORNERS = np.array([[x, y, -1.0, 1.0] for x in (-1.0, 1.0) for y in (-1.0, 1.0)])
 #: A matrix VTK inverts into, then read: VTK's routine is cheaper to call than numpy's.
 _INVERSE = vtk.vtkMatrix4x4()
 
@@ -122,6 +124,19 @@ class FrameView:
         """The inverse of :attr:`world_to_clip` (computed when first asked)."""
         camera, _, aspect = self.stamp[:3]
         return _inverse(vtk.vtkCamera.GetCompositeProjectionTransformMatrix(camera, aspect, -1, 1))
+
+    @cached
+    def near_region(self) -> np.ndarray | None:
+        """The camera's position and its near-plane corners (worked out when first asked).
+
+        ``(5, 3)`` float64 world points, the camera first; ``None`` for a
+        parallel projection, whose view rays start at infinity behind the camera.
+        """
+        camera = self.stamp[0]
+        if vtk.vtkCamera.GetParallelProjection(camera):
+            return None
+        corners = _NEAR_CORNERS @ self.clip_to_world.T
+        return np.vstack([vtk.vtkCamera.GetPosition(camera), corners[:, :3] / corners[:, 3:4]])
 
     def to_frame_at(self, origin: np.ndarray) -> np.ndarray:
         """Return the matrix from view coordinates to world axes moved to ``origin``.

@@ -59,8 +59,8 @@ class _LightState:
     #: What the mask was last brought up to date for (the cast, snapshot, view and
     #: target size) and the notes that said about it (:meth:`PlanarTechnique.again`).
     held: tuple | None = None
-    #: The cast last drawn, with its plane facing the light and the casters that
-    #: may cast onto it: the camera changes neither.
+    #: The cast last drawn, with the casters that may cast onto its plane,
+    #: flattened (:class:`FlatCasters`): the camera changes none of it.
     flattened: tuple | None = None
 
 
@@ -98,19 +98,16 @@ def _camera_sees_unlit_side(camera: vtk.vtkCamera, plane: np.ndarray) -> bool:
     return float(plane @ np.append(camera.GetPosition(), 1.0)) < 0.0
 
 
-def caster_matrices(
-    model: np.ndarray,
-    plane: np.ndarray,
-    light: np.ndarray,
-    projection: np.ndarray,
-    view: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Return what the planar pass needs to draw one caster, composed in float64.
+def flatten(
+    model: np.ndarray, plane: np.ndarray, light: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Return one caster flattened onto the plane from the light, whatever the camera.
 
     The caster is drawn in a frame centred on its own centre ``o``: the
-    plane, the light and the camera's view are moved there before they are
-    multiplied, so no matrix handed to the GPU holds the scene's distance
-    from the origin.
+    plane and the light are moved there before they are multiplied, and
+    :meth:`FlatCasters.to_clip` moves the camera's view there too, so no
+    matrix handed to the GPU holds the scene's distance from the origin.
+    All in float64.
 
     Parameters
     ----------
@@ -120,13 +117,13 @@ def caster_matrices(
         ``(4,)`` the world plane, positive on the light's side, ``|n| = 1``.
     light : numpy.ndarray
         ``(4,)`` the homogeneous world light.
-    projection, view : numpy.ndarray
-        ``(4, 4)`` the camera's projection and world-to-view matrices.
 
     Returns
     -------
-    model_to_clip : numpy.ndarray
-        ``(4, 4)`` projection, view, flattening and model.
+    centre : numpy.ndarray
+        ``(3,)`` the world centre ``o``.
+    flat : numpy.ndarray
+        ``(4, 4)`` from model coordinates to the flattened point, moved by ``-o``.
     plane_model : numpy.ndarray
         ``(4,)`` the plane in model coordinates (signed distance in world units).
     flat_w : numpy.ndarray
@@ -135,13 +132,11 @@ def caster_matrices(
     Examples
     --------
     >>> import numpy as np
-    >>> from pvshadows.techniques.planar import caster_matrices
+    >>> from pvshadows.techniques.planar import flatten
     >>> from pvshadows.geometry.transforms import translation
     >>> ground, bulb = np.array([0, 0, 1.0, 0]), np.array([0, 0, 4.0, 1])
-    >>> to_clip, plane, w = caster_matrices(
-    ...     translation([1, 0, 2]), ground, bulb, np.eye(4), np.eye(4)
-    ... )
-    >>> p = to_clip @ [0, 0, 0, 1.0]
+    >>> centre, flat, plane, w = flatten(translation([1, 0, 2]), ground, bulb)
+    >>> p = translation(centre) @ flat @ [0, 0, 0, 1.0]
     >>> (p[:3] / p[3]).tolist(), float(plane @ [0, 0, 0, 1.0])
     ([2.0, 0.0, 0.0], 2.0)
     """
@@ -150,48 +145,114 @@ def caster_matrices(
     plane_local = translation(centre).T @ plane
     light_local = translation(-centre * light[3]) @ light
     flat = flattening(plane_local, light_local) @ local
-    to_clip = projection @ (view @ translation(centre)) @ flat
-    return to_clip, local.T @ plane_local, flat[3].copy()
+    return centre, flat, local.T @ plane_local, flat[3].copy()
 
 
-def flat_draws(
-    casters: list[ActorState],
-    plane: np.ndarray,
-    light: np.ndarray,
-    context: FrameContext,
-) -> list[FlatDraw]:
-    """Return each caster's draw for the planar pass (:func:`caster_matrices`).
+@dataclass(frozen=True)
+class FlatCasters:
+    """The casters of one cast flattened onto its plane (:func:`flatten`), made once per cast.
+
+    Neither the camera nor the viewport changes them: a camera move only
+    composes the camera's matrices with them again (:meth:`to_clip`).
+
+    Attributes
+    ----------
+    casters : list of ActorState
+        The casters, in order.
+    centres : numpy.ndarray
+        ``(n, 3)`` each caster's world centre.
+    flats : numpy.ndarray
+        ``(n, 4, 4)`` each caster's flattening, from its model coordinates.
+    planes_model : numpy.ndarray
+        ``(n, 4)`` the plane in each caster's model coordinates.
+    flat_ws : numpy.ndarray
+        ``(n, 4)`` each flattened point's ``w`` as a function of the model point.
+    """
+
+    casters: list[ActorState]
+    centres: np.ndarray
+    flats: np.ndarray
+    planes_model: np.ndarray
+    flat_ws: np.ndarray
+
+    @classmethod
+    def of(cls, casters: list[ActorState], plane: np.ndarray, light: np.ndarray) -> FlatCasters:
+        """Flatten every caster onto ``plane`` from ``light``.
+
+        Parameters
+        ----------
+        casters : list of ActorState
+            The casters.
+        plane : numpy.ndarray
+            ``(4,)`` the world plane, positive on the light's side, ``|n| = 1``.
+        light : numpy.ndarray
+            ``(4,)`` the homogeneous world light.
+
+        Returns
+        -------
+        FlatCasters
+            Their flattenings, stacked.
+        """
+        parts = [flatten(caster.model_matrix(), plane, light) for caster in casters]
+        centres, flats, planes, ws = (
+            np.array([part[i] for part in parts]).reshape(len(parts), *shape)
+            for i, shape in enumerate(((3,), (4, 4), (4,), (4,)))
+        )
+        return cls(casters, centres, flats, planes, ws)
+
+    def to_clip(self, projection: np.ndarray, view: np.ndarray) -> np.ndarray:
+        """Return each caster's matrix from model to clip coordinates, in float64.
+
+        Parameters
+        ----------
+        projection, view : numpy.ndarray
+            ``(4, 4)`` the camera's projection and world-to-view matrices.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n, 4, 4)``: projection, the view moved to each caster's centre,
+            and its flattening.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from pvshadows.techniques.planar import FlatCasters, flatten
+        >>> from pvshadows.geometry.transforms import translation
+        >>> ground, bulb = np.array([0, 0, 1.0, 0]), np.array([0, 0, 4.0, 1])
+        >>> parts = flatten(translation([1, 0, 2]), ground, bulb)
+        >>> flats = FlatCasters([], *(np.array([p]) for p in parts))
+        >>> p = flats.to_clip(np.eye(4), np.eye(4))[0] @ [0, 0, 0, 1.0]
+        >>> (p[:3] / p[3]).tolist()
+        [2.0, 0.0, 0.0]
+        """
+        moved = np.repeat(view[None], len(self.centres), axis=0)
+        # The view times a translation to the centre: only its last column changes.
+        moved[:, :, 3] = self.centres @ view[:, :3].T + view[:, 3]
+        return projection @ moved @ self.flats
+
+
+def flat_draws(flats: FlatCasters, context: FrameContext) -> list[FlatDraw]:
+    """Return each caster's draw for the planar pass, seen from this frame's camera.
 
     Parameters
     ----------
-    casters : list of ActorState
-        The casters.
-    plane : numpy.ndarray
-        ``(4,)`` the world plane, positive on the light's side, ``|n| = 1``.
-    light : numpy.ndarray
-        ``(4,)`` the homogeneous world light.
+    flats : FlatCasters
+        The casters, flattened onto the plane.
     context : FrameContext
-        The frame (camera, renderer, actor buffers).
+        The frame (camera, actor buffers).
 
     Returns
     -------
     list of FlatDraw
         One per caster.
     """
-    projection, view = context.view.projection, context.view.world_to_view
+    to_clip = flats.to_clip(context.view.projection, context.view.world_to_view)
     return [
-        FlatDraw(
-            context.buffers.get(caster),
-            *caster_matrices(
-                caster.model_matrix(),
-                plane,
-                light,
-                projection,
-                view,
-            ),
-            caster.transmittance,
+        FlatDraw(context.buffers.get(caster), matrix, plane, w, caster.transmittance)
+        for caster, matrix, plane, w in zip(
+            flats.casters, to_clip, flats.planes_model, flats.flat_ws, strict=True
         )
-        for caster in casters
     ]
 
 
@@ -289,8 +350,9 @@ class PlanarTechnique:
                 for c in plan.casters
                 if vtk_id(c.actor) != state.plane_actor and may_cast(c, plane, light)
             ]
-            state.flattened = (plan, between)
-        casters = state.flattened[1]
+            state.flattened = (plan, FlatCasters.of(between, plane, light))
+        flats = state.flattened[1]
+        casters = flats.casters
         if not casters:
             if state.key != ("lit",):
                 self._pass.fill_lit(state.mask)
@@ -311,7 +373,7 @@ class PlanarTechnique:
         record = PassReport(
             _PASS, "run", f"{len(casters)} of {len(plan.casters)} casters flattened onto {name}"
         )
-        draws = flat_draws(casters, plane, light, context)
+        draws = flat_draws(flats, context)
         with context.timer.measure(record):
             self._pass.draw(state.mask, draws)
         state.key, state.frame = key, context.frame

@@ -53,6 +53,7 @@ from pvshadows.model.report import PassReport
 from pvshadows.passes.volume_stencil import DepthDraw, VolumeDraw, VolumePasses
 from pvshadows.scene.actor_state import ActorState, hides_what_is_behind
 from pvshadows.scene.render_target import tiled_viewport
+from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import ActorTriangles, vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, LightFrame
@@ -89,6 +90,48 @@ class _LightState:
     #: What the mask was last right for: the cast, snapshot, view, target size and
     #: hidden-line removal (:meth:`VolumeTechnique.again` compares them).
     held: tuple | None = None
+    #: The last count's draws, whatever the camera (:class:`_Drawn`).
+    drawn: _Drawn | None = None
+    #: A cast, and its closed casters' keys and transmittances (part of the mask's key).
+    closed_key: tuple = (None, ())
+
+
+@dataclass
+class _Drawn:
+    """What a light's stencil count draws besides the camera, kept while its cast holds.
+
+    A camera that moves changes only each draw's ``model_to_clip`` (the
+    camera's matrix times the caster's model matrix); the batches, the
+    light in each caster's frame, the index ranges and the CPU volumes
+    stay, as long as the cast, its z-mode (which caps are drawn) and the
+    parallel projection's reach do.
+    """
+
+    plan: Cast
+    zmode: str
+    reach: float
+    batches: list[list[tuple]]
+    passing: list[float]
+    draws: list[list[VolumeDraw]]
+    models: list[list[np.ndarray]]
+
+    def seen_from(self, camera: np.ndarray) -> list[list[VolumeDraw]]:
+        """Return the draws with each model matrix composed with ``camera``."""
+        return [
+            [
+                VolumeDraw(
+                    draw.buffers,
+                    draw.extrude,
+                    camera @ model,
+                    draw.light_model,
+                    draw.mirrored,
+                    draw.pieces,
+                    draw.extrude_to,
+                )
+                for draw, model in zip(batch, models, strict=True)
+            ]
+            for batch, models in zip(self.draws, self.models, strict=True)
+        ]
 
 
 class VolumeTechnique:
@@ -111,6 +154,10 @@ class VolumeTechnique:
         self._cpu: dict[tuple[str, str], _CpuVolume] = {}
         self._depth_key: tuple | None = None
         self._depth_frame = -1
+        #: Per snapshot: every actor's part of a mask's key; and, per hidden-line
+        #: removal too, the actors the depth pre-pass draws and their keys.
+        self._actors_of: tuple = (None, ())
+        self._depth_of: tuple = (None, False, [], ())
         self._fallbacks = OpenCasterFallbacks(window)
         self._context: FrameContext | None = None
         #: Each light in each caster's model coordinates, and whether the caster's
@@ -172,23 +219,34 @@ class VolumeTechnique:
             extrude,
             camera.tobytes(),
             (width, height),
-            tuple((*c.key(), c.faces_drawn) for c in context.snapshot.actors),
+            self._actors_key(context.snapshot),
             hidden,
-            tuple((*c.key(), c.transmittance) for c, _ in closed),
+            self._closed_key(state, plan),
         )
         if key == state.key:
             reports.append(_reused(state, extrude))
             return reports + self._fallbacks.update(state.fallback, context)
         if self._depth_frame != context.frame:
             reports.append(self._depth_pass(context, camera, width, height))
-        plan_batches, passing = translucent_batches(closed)
         reach = finite_reach(context, light)
         if reach:
             plan.notes.append("parallel projection: volumes end beyond the scene, not at infinity")
-        draws, built = self._volume_draws(
-            plan, closed, plan_batches, camera, light, zmode, extrude, reach
-        )
-        reports.extend(built)
+        drawn = state.drawn
+        if (
+            drawn is not None
+            and drawn.plan is plan
+            and (drawn.zmode, drawn.reach) == (zmode, reach)
+        ):
+            plan_batches, passing, draws = drawn.batches, drawn.passing, drawn.seen_from(camera)
+            reports.extend(_cpu_reused(closed, extrude))
+        else:
+            plan_batches, passing = translucent_batches(closed)
+            draws, built = self._volume_draws(
+                plan, closed, plan_batches, camera, light, zmode, extrude, reach
+            )
+            reports.extend(built)
+            models = [[closed[n][0].model_matrix() for n, _, _ in batch] for batch in plan_batches]
+            state.drawn = _Drawn(plan, zmode, reach, plan_batches, passing, draws, models)
         bodies = [sum(e - s for _, s, e in batch) for batch in plan_batches]
         record = PassReport(
             f"stencil count ({zmode}, {extrude} extrusion)",
@@ -205,6 +263,36 @@ class VolumeTechnique:
         state.draws = [draw for batch in draws for draw in batch]
         return reports + self._fallbacks.update(state.fallback, context)
 
+    def _actors_key(self, snapshot: Snapshot) -> tuple:
+        """Return each actor's key and whether its faces are drawn (per snapshot)."""
+        if self._actors_of[0] is not snapshot:
+            self._actors_of = (snapshot, tuple((*a.key(), a.faces_drawn) for a in snapshot.actors))
+        return self._actors_of[1]
+
+    @staticmethod
+    def _closed_key(state: _LightState, plan: VolumeCast) -> tuple:
+        """Return a cast's closed casters' keys and transmittances (per cast)."""
+        if state.closed_key[0] is not plan:
+            closed = plan.volume.closed
+            state.closed_key = (plan, tuple((*c.key(), c.transmittance) for c, _ in closed))
+        return state.closed_key[1]
+
+    def _depth_actors(self, context: FrameContext) -> tuple[list[ActorState], tuple]:
+        """Return the actors that hide what is behind them, and their keys (per snapshot)."""
+        hidden = bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(context.renderer))
+        kept = self._depth_of
+        if kept[0] is not context.snapshot or kept[1] != hidden:
+            actors = [
+                a for a in context.snapshot.actors if hides_what_is_behind(a, context.renderer)
+            ]
+            kept = self._depth_of = (
+                context.snapshot,
+                hidden,
+                actors,
+                tuple(a.key() for a in actors),
+            )
+        return kept[2], kept[3]
+
     def _ensure_target(self, width: int, height: int) -> None:
         if self._target is not None and self._target.size == (width, height):
             return
@@ -220,8 +308,8 @@ class VolumeTechnique:
         self, context: FrameContext, camera: np.ndarray, width: int, height: int
     ) -> PassReport:
         self._depth_frame = context.frame
-        actors = [a for a in context.snapshot.actors if hides_what_is_behind(a, context.renderer)]
-        key = (camera.tobytes(), (width, height), tuple(a.key() for a in actors))
+        actors, keys = self._depth_actors(context)
+        key = (camera.tobytes(), (width, height), keys)
         if key == self._depth_key:
             return PassReport(
                 "volume depth pre-pass", "reused", "camera and actors unchanged: depth still right"
@@ -576,6 +664,19 @@ class VolumeTechnique:
         self.keep_only([])
         self._fallbacks.release()
         self._passes.release()
+
+
+def _cpu_reused(closed: list, extrude: str) -> list[PassReport]:
+    """Return the report of CPU volumes all kept, worded as ``_volume_draws`` words it."""
+    if extrude != "cpu" or not closed:
+        return []
+    return [
+        PassReport(
+            "silhouettes and volumes (cpu)",
+            "reused",
+            f"0 rebuilt, {len(closed)} reused (light and caster unchanged); CPU time",
+        )
+    ]
 
 
 def _reused(state: _LightState, extrude: str) -> PassReport:

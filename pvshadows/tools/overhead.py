@@ -70,6 +70,11 @@ class OverheadScene:
         own frame does: the ``"cold"`` series (one caster after a
         1000-caster frame) tells how much of the growth along the
         ``"actors"`` series is colder caches rather than more work.
+    technique : str
+        The ``technique`` given to :meth:`~pvshadows.ShadowsComponent.enable`:
+        ``"auto"`` (a map or a cube, as a user gets), or ``"volume"`` or
+        ``"planar"``, the techniques that draw a mask in screen space and so
+        work again whenever the camera moves.
     """
 
     series: str
@@ -78,12 +83,14 @@ class OverheadScene:
     lights: int = 1
     triangles: int = 0
     cold_after: int = 0
+    technique: str = "auto"
 
     @property
     def label(self) -> str:
         """Name of the scene in the table."""
         if self.series == "standard":
-            return f"standard scene, {self.light}"
+            drawn_by = "" if self.technique == "auto" else f", technique={self.technique}"
+            return f"standard scene, {self.light}{drawn_by}"
         casters = f"{self.actors} caster{'s' * (self.actors != 1)}"
         if self.series == "actors":
             return f"{casters}, {self.light}"
@@ -154,8 +161,9 @@ def overhead_scenes(*, quick: bool = False, huge: bool = False) -> list[Overhead
     Returns
     -------
     list of OverheadScene
-        The standard scene with each kind of light, then the series over
-        casters (1, 50, 500, 1000), one caster with caches left cold by a
+        The standard scene with each kind of light, the standard scene with
+        a spot light drawn by the volume and the planar technique, then the
+        series over casters (1, 50, 500, 1000), one caster with caches left cold by a
         1000-caster frame (:attr:`OverheadScene.cold_after`), spot lights
         (1, 4, 16) and triangles of one caster under a point light (10 k,
         1 M, and 10 M with ``huge``).
@@ -165,12 +173,15 @@ def overhead_scenes(*, quick: bool = False, huge: bool = False) -> list[Overhead
     >>> from pvshadows.tools.overhead import overhead_scenes
     >>> [scene.label for scene in overhead_scenes()][:2]
     ['standard scene, point', 'standard scene, spot']
+    >>> overhead_scenes()[3].label
+    'standard scene, spot, technique=volume'
     >>> overhead_scenes(huge=True)[-1].label
     '10 000 000 triangles, point'
     """
     if quick:
         return [OverheadScene("standard", "point")]
     scenes = [OverheadScene("standard", kind) for kind in ("point", "spot", "directional")]
+    scenes += [OverheadScene("standard", technique=name) for name in ("volume", "planar")]
     scenes += [OverheadScene("actors", actors=n) for n in (1, 50, 500, 1000)]
     scenes.append(OverheadScene("cold", actors=1, cold_after=1000))
     scenes += [OverheadScene("lights", lights=n) for n in (1, 4, 16)]
@@ -313,7 +324,7 @@ def measure_frames(
 
     twins = [build_scene(scene), build_scene(scene)]
     shadowed, lights, _ = twins[1]
-    shadowed.shadows.enable(lights=lights)
+    shadowed.shadows.enable(lights=lights, technique=scene.technique)
     chill = None
     if scene.cold_after:
         chill = build_scene(OverheadScene("actors", scene.light, actors=scene.cold_after))[0]
@@ -379,7 +390,7 @@ def measure_first_frame(scene: OverheadScene) -> tuple[float, float]:
         plotter, lights, _ = build_scene(scene)
         start = time.perf_counter()
         if shadows:
-            plotter.shadows.enable(lights=lights)
+            plotter.shadows.enable(lights=lights, technique=scene.technique)
         plotter.screenshot(return_img=True)
         opengl_for(plotter.ren_win).glFinish()
         seconds.append(time.perf_counter() - start)
@@ -533,7 +544,8 @@ def write_overhead(rows: list[OverheadRow], out: Path) -> str:
         The markdown written, to print.
     """
     out.mkdir(parents=True, exist_ok=True)
-    fields = ["scene", "series", "light", "actors", "lights", "triangles", "cold_after", "frames"]
+    fields = ["scene", "series", "light", "actors", "lights", "triangles", "cold_after"]
+    fields += ["technique", "frames"]
     fields += [f"plain_{m}_ms" for m in MOTIONS] + [f"added_{m}_ms" for m in MOTIONS]
     fields += [f"own_{m}_ms" for m in MOTIONS] + [f"passes_{m}_ms" for m in MOTIONS]
     fields += ["first_plain_s", "first_shadowed_s"]
