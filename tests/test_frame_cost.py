@@ -1121,3 +1121,45 @@ def test_a_kept_zpass_holds_while_the_camera_keeps_its_room_and_never_inside_a_v
         draw(pl)
         assert volume.zmode_of(scene.light) == "zpass"
     assert 1 <= shadows.memo.zmodes_chosen - chosen <= 5
+
+
+def test_a_moving_volume_light_keeps_its_zpass_only_while_it_keeps_its_room():
+    from pvshadows.pipeline.volume_zmode import choose_zmode
+
+    scene = standard_scene(window_size=(200, 150), light="spot")
+    pl = scene.plotter
+    pl.shadows.enable(technique="volume")
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    volume = shadows.technique("volume")
+    chosen = shadows.memo.zmodes_chosen
+    x, y, z = scene.light.position
+    for step in range(10):  # a new cast each frame, far from every volume
+        scene.light.position = (x + 0.01 * (step + 1), y, z)
+        draw(pl)
+        assert volume.zmode_of(scene.light) == "zpass"
+        notes = pl.shadows.last_frame.lights[0].notes
+        assert "zpass: the camera is outside every shadow volume" in notes
+    assert shadows.memo.zmodes_chosen - chosen <= 2
+    # A point light walks to where the camera is in the box's shadow: every frame's
+    # choice is the full test's, though the walk starts with room to spare.
+    scene = standard_scene(window_size=(200, 150), light="point")
+    pl = scene.plotter
+    pl.camera_position = [(-6, -0.3, 4.5), (0, 0, 0.3), (0, 0, 1)]
+    pl.shadows.enable(technique="volume")
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    volume = shadows.technique("volume")
+    answers = []
+    for t in np.linspace(0.0, 1.0, 30):
+        scene.light.position = tuple(
+            (1 - t) * np.array([-6.0, -6, 6]) + t * np.array([0, -0.3, 0.3])
+        )
+        draw(pl)
+        cast = shadows.plans[0].cast
+        view = shadows._context.view
+        boxes = cast.volume.caster_boxes
+        expected, _ = choose_zmode("auto", cast.volume.light, pl.renderer, boxes, view)
+        assert volume.zmode_of(scene.light) == expected, t
+        answers.append(expected)
+    assert answers[0] == "zpass" and answers[-1] == "zfail"

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import fields, replace
+from functools import partial
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -36,7 +37,7 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.reach import ReachCache, same_objects
 from pvshadows.pipeline.sight import ViewSight
-from pvshadows.pipeline.volume_plan import choose_volume_zmode, plan_volume, zpass_kept
+from pvshadows.pipeline.volume_plan import ZpassRoom, choose_volume_zmode, plan_volume
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.culling import box_around, box_corners
 from pvshadows.scene.light_kit import KeyLights, unshadowed_reason
@@ -146,11 +147,9 @@ class PlanMemo:
         self._in_view: tuple[Snapshot, FrameView, ViewSight] | None = None
         #: The lights of the last :meth:`keep_only`.
         self._kept_for: tuple[vtk.vtkLight, ...] = ()
-        #: What each kept volume plan last chose its z-mode for: the cast, view and
-        #: hidden-line removal, and where z-pass holds (:func:`zpass_kept`).
-        self._zmodes: dict[
-            int, tuple[VolumeCast, FrameView, bool, tuple[np.ndarray, float] | None]
-        ] = {}
+        #: What each volume light last chose its z-mode for: the volume plan, view
+        #: and hidden-line removal, and the room its z-pass had (:class:`ZpassRoom`).
+        self._zmodes: dict[int, tuple[VolumePlan, FrameView, bool, ZpassRoom | None]] = {}
 
     def forget(self) -> None:
         """Plan every light again next frame."""
@@ -380,23 +379,31 @@ class PlanMemo:
             del self._zmodes[key]
 
     def choose_zmode(
-        self, cast: VolumeCast, renderer: vtk.vtkRenderer, view: FrameView, warned: set[tuple]
+        self,
+        cast: Cast,
+        volume: VolumePlan,
+        renderer: vtk.vtkRenderer,
+        view: FrameView,
+        warned: set[tuple],
     ) -> None:
-        """Choose a kept volume plan's z-pass or z-fail again where the camera may have changed it.
+        """Choose a volume plan's z-pass or z-fail where the camera or light may have changed it.
 
         What decides (:func:`~pvshadows.pipeline.volume_plan.choose_volume_zmode`)
         is the camera, the renderer's hidden-line removal and the plan's own
-        light and closed casters: the same cast seen from the same view
+        light and closed casters: the same plan seen from the same view
         (:meth:`FrameView.of` hands back last frame's while the camera, aspect
-        and size hold) keeps the choice it made, and so does a z-pass made
-        with room to spare while the camera's near region stays within that
-        room (:func:`~pvshadows.pipeline.volume_plan.zpass_kept`): the
-        choice would come out the same.
+        and size hold) keeps the choice it made, and a z-pass made with room
+        to spare (:class:`~pvshadows.pipeline.volume_plan.ZpassRoom`) is
+        taken again, without a test, while the light's closed casters are
+        the same and neither the light nor the camera's near region left
+        that room: the test would come out the same.
 
         Parameters
         ----------
-        cast : VolumeCast
-            The light's kept cast.
+        cast : Cast
+            The light's cast, whose notes say the choice.
+        volume : VolumePlan
+            Its volume plan (a kept one, or one just made).
         renderer : vtk.vtkRenderer
             The renderer, whose camera decides.
         view : FrameView
@@ -405,21 +412,18 @@ class PlanMemo:
             Warnings already given, kept between frames.
         """
         hidden = bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(renderer))
-        kept = self._zmodes.get(id(cast.light))
-        if kept is not None and kept[0] is cast and kept[2] == hidden:
-            if kept[1] is view or _still_clear(kept[3], view):
-                return
-        choose_volume_zmode(cast, cast.volume, renderer, warned, view)
-        self._zmodes[id(cast.light)] = (cast, view, hidden, zpass_kept(cast, cast.volume, view))
-        self.zmodes_chosen += 1
-
-
-def _still_clear(kept: tuple[np.ndarray, float] | None, view: FrameView) -> bool:
-    """Whether the camera's near region stayed within the room a kept z-pass had."""
-    if kept is None:
-        return False
-    region = view.near_region
-    return region is not None and float(np.abs(region - kept[0]).max()) < kept[1]
+        light = id(cast.light)
+        kept = self._zmodes.get(light)
+        if kept is not None and kept[0] is volume and kept[1] is view and kept[2] == hidden:
+            return
+        room = kept[3] if kept is not None else None
+        outside = room is not None and room.holds(volume, view, hidden)
+        if not (outside and kept is not None and kept[0] is volume):
+            choose_volume_zmode(cast, volume, renderer, warned, view, outside)
+        if not outside:
+            room = ZpassRoom.of(cast, volume, view, hidden)
+            self.zmodes_chosen += 1
+        self._zmodes[light] = (volume, view, hidden, room)
 
 
 def _moved_out_of_reach(
@@ -545,7 +549,7 @@ def plan_frame(
     warned = set() if warned is None else warned
     gpu = extrude_on_gpu if extrude_on_gpu is not None else lambda: True
     keys = KeyLights() if key_lights is None else key_lights
-    shared = _Shared(snapshot, in_view, memo if memo is not None else PlanMemo(), keys)
+    shared = _Shared(snapshot, in_view, memo if memo is not None else PlanMemo(), keys, view)
     planned = 0
     for index, light in enumerate(lights):
         inputs = (light, pose_time(light), settings_for(light), index, vtk_index, snapshot)
@@ -560,7 +564,7 @@ def plan_frame(
             planned += 1
         elif isinstance(plan.cast, VolumeCast):
             assert memo is not None  # plans are recalled from a memo only
-            memo.choose_zmode(plan.cast, renderer, view, warned)
+            memo.choose_zmode(plan.cast, plan.cast.volume, renderer, view, warned)
         if vtk.vtkLight.GetSwitch(light):
             vtk_index += 1
         plans.append(plan)
@@ -601,10 +605,17 @@ class _Shared:
     """What the lights planned in one frame share, worked out once when first asked."""
 
     def __init__(
-        self, snapshot: Snapshot, in_view: ViewSight, memo: PlanMemo, keys: KeyLights
+        self,
+        snapshot: Snapshot,
+        in_view: ViewSight,
+        memo: PlanMemo,
+        keys: KeyLights,
+        view: FrameView,
     ) -> None:
         self.snapshot = snapshot
         self.in_view = in_view
+        self.memo = memo
+        self.view = view
         #: Reads each light's pose once per pose time (:meth:`PlanMemo.pose`).
         self.pose = memo.pose
         #: The renderer's key light, looked for once (:func:`_casts_nothing`).
@@ -692,7 +703,11 @@ def _plan_light(
         light, index, plan.vtk_index, plan.kind, settings, technique, pose, within, plan.notes
     )
     if technique == "volume":
-        cast = _volume_cast(cast, plan_volume(cast, renderer, snapshot, warned, extrude_on_gpu))
+        choose = partial(
+            shared.memo.choose_zmode, renderer=renderer, view=shared.view, warned=warned
+        )
+        volume = plan_volume(cast, renderer, snapshot, warned, extrude_on_gpu, choose)
+        cast = _volume_cast(cast, volume)
     elif technique == "planar":
         cast = _planar_cast(cast, shared.plane)
         plan.notes.append(shared.plane.reason)

@@ -15,14 +15,14 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.model.plan import FALLBACK_TECHNIQUES, SERVES, Cast, VolumePlan
 from pvshadows.pipeline.cube_passes import cube_passes
-from pvshadows.pipeline.volume_zmode import choose_zmode, zpass_clearance
+from pvshadows.pipeline.volume_zmode import OUTSIDE, choose_zmode, zpass_clearance
 from pvshadows.scene.actor_state import ActorState, hides_what_is_behind
 from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import vtk_id
@@ -42,6 +42,7 @@ def plan_volume(
     snapshot: Snapshot,
     warned: set[tuple],
     extrude_on_gpu: Callable[[], bool],
+    choose_zmode: Callable[[Cast, VolumePlan], None],
 ) -> VolumePlan:
     """Decide what a volume light casts this frame; say it in ``plan.notes``.
 
@@ -60,6 +61,10 @@ def plan_volume(
     extrude_on_gpu : callable
         Tells whether the window compiles the extruding geometry shader
         (asked only when the settings want it).
+    choose_zmode : callable
+        Chooses the plan's z-pass or z-fail for this frame's camera
+        (:meth:`pvshadows.pipeline.planner.PlanMemo.choose_zmode`, which
+        calls :func:`choose_volume_zmode` where it must).
 
     Returns
     -------
@@ -96,7 +101,7 @@ def plan_volume(
         extrude = "cpu"
         plan.notes.append("the extruding geometry shader does not compile here: cpu extrusion")
     volume = VolumePlan(closed, light, None, "", extrude, fallback)
-    choose_volume_zmode(plan, volume, renderer, warned)
+    choose_zmode(plan, volume)
     return volume
 
 
@@ -106,6 +111,7 @@ def choose_volume_zmode(
     renderer: vtk.vtkRenderer,
     warned: set[tuple],
     view: FrameView | None = None,
+    outside: bool = False,
 ) -> None:
     """Choose z-pass or z-fail for the renderer's camera now; say it in ``plan.notes``.
 
@@ -128,11 +134,19 @@ def choose_volume_zmode(
     view : FrameView, optional
         This frame's view of the renderer's camera, whose inverse projection
         is taken (:func:`~pvshadows.pipeline.volume_zmode.near_region`).
+    outside : bool, default: False
+        Whether the camera is known to be outside every volume (a kept
+        z-pass's :class:`ZpassRoom` holds): ``"auto"`` then counts with
+        z-pass, and a forced z-pass is not at risk, without testing again.
     """
     if volume.enclosing is not None:
         return
-    zmode, why = _zmode_for(plan.settings.zmode, volume, renderer, view)
-    if plan.settings.zmode == "zpass":
+    wanted = plan.settings.zmode
+    if outside and wanted == "auto":
+        zmode, why = "zpass", OUTSIDE
+    else:
+        zmode, why = _zmode_for(wanted, volume, renderer, view)
+    if wanted == "zpass" and not outside:
         auto, risk = _zmode_for("auto", volume, renderer, view)
         if auto == "zfail":
             why = f"{why}, although z-pass may miscount here: {risk}"
@@ -154,33 +168,103 @@ def choose_volume_zmode(
     volume.zmode, volume.zmode_reason = zmode, why
 
 
-def zpass_kept(cast: Cast, volume: VolumePlan, view: FrameView) -> tuple[np.ndarray, float] | None:
-    """Return the near region a volume plan chose z-pass at and how far it may move, if any.
+@dataclass(frozen=True)
+class ZpassRoom:
+    """The room a volume light's z-pass had when it was chosen.
 
-    Parameters
+    While the light and the camera's near region move less than
+    :attr:`room` (per coordinate) and the closed casters are the same, the
+    box around them stays apart from every caster's box, so ``"auto"``
+    would count with z-pass again, for the same reason
+    (:func:`~pvshadows.pipeline.volume_zmode.zpass_clearance`).
+
+    Attributes
     ----------
-    cast : Cast
-        The light's cast.
-    volume : VolumePlan
-        Its volume plan, its z-mode just chosen for ``view``
-        (:func:`choose_volume_zmode`).
-    view : FrameView
-        The view it was chosen for.
-
-    Returns
-    -------
-    tuple or None
-        ``(near region, clearance)``
-        (:func:`~pvshadows.pipeline.volume_zmode.zpass_clearance`): while
-        no point of the camera's near region moves further than that, the
-        choice and its note hold. ``None`` where the choice must be made
-        again at every view (z-fail, or z-pass by a narrow margin).
+    closed : tuple of ActorState
+        The closed casters it was chosen among.
+    hidden : bool
+        The renderer's hidden-line removal then.
+    light : numpy.ndarray
+        ``(4,)`` the light the volumes were cast from.
+    region : numpy.ndarray
+        ``(5, 3)`` the camera's near region.
+    room : float
+        How far each may move.
     """
-    if volume.enclosing is not None or volume.zmode != "zpass" or cast.settings.zmode == "zfail":
-        return None
-    region = view.near_region
-    clearance = zpass_clearance(volume.light, region, volume.caster_boxes)
-    return (region, clearance) if region is not None and clearance > 0.0 else None
+
+    closed: tuple[ActorState, ...]
+    hidden: bool
+    light: np.ndarray
+    region: np.ndarray
+    room: float
+
+    @classmethod
+    def of(cls, cast: Cast, volume: VolumePlan, view: FrameView, hidden: bool) -> ZpassRoom | None:
+        """Return the room of a z-mode just chosen, or ``None`` where it has none.
+
+        Parameters
+        ----------
+        cast : Cast
+            The light's cast.
+        volume : VolumePlan
+            Its volume plan, its z-mode just chosen for ``view``
+            (:func:`choose_volume_zmode`).
+        view : FrameView
+            The view it was chosen for.
+        hidden : bool
+            The renderer's hidden-line removal.
+
+        Returns
+        -------
+        ZpassRoom or None
+            ``None`` for z-fail, a forced z-fail, a light inside a caster,
+            a directional light, a parallel projection, or a z-pass by a
+            narrow margin: the choice is made again at the next view.
+        """
+        if (
+            volume.enclosing is not None
+            or volume.zmode != "zpass"
+            or cast.settings.zmode == "zfail"
+        ):
+            return None
+        region = view.near_region
+        room = zpass_clearance(volume.light, region, volume.caster_boxes)
+        if region is None or room <= 0.0:
+            return None
+        return cls(tuple(c for c, _ in volume.closed), hidden, volume.light, region, room)
+
+    def holds(self, volume: VolumePlan, view: FrameView, hidden: bool) -> bool:
+        """Whether ``"auto"`` would count a volume plan seen from ``view`` with z-pass.
+
+        Parameters
+        ----------
+        volume : VolumePlan
+            A plan of the same light (this frame's, or the one the room was made for).
+        view : FrameView
+            This frame's view.
+        hidden : bool
+            The renderer's hidden-line removal now.
+
+        Returns
+        -------
+        bool
+            ``True`` when its closed casters are the same, hidden-line removal
+            is as it was, and neither its light nor the near region moved out
+            of the room.
+        """
+        closed = volume.closed
+        if hidden != self.hidden or len(closed) != len(self.closed):
+            return False
+        if any(c is not kept for (c, _), kept in zip(closed, self.closed, strict=True)):
+            return False
+        region = view.near_region
+        if region is None:
+            return False
+        moved = max(
+            float(np.abs(region - self.region).max()),
+            float(np.abs(volume.light - self.light).max()),
+        )
+        return moved < self.room
 
 
 def _zmode_for(

@@ -37,6 +37,8 @@ from pvshadows.scene.view import FrameView
 
 #: The values ``zmode`` takes.
 ZMODES = ("auto", "zpass", "zfail")
+#: Why ``"auto"`` counts with z-pass where no caster's volume may hold the camera.
+OUTSIDE = "the camera is outside every shadow volume"
 
 
 def near_region(renderer: vtk.vtkRenderer, view: FrameView | None = None) -> np.ndarray | None:
@@ -216,7 +218,7 @@ def choose_zmode(
                 f"the camera may be inside the shadow volume of {boxes.names[number]} (the "
                 "region between the light and the camera's near plane meets its bounds)"
             )
-    return "zpass", "the camera is outside every shadow volume"
+    return "zpass", OUTSIDE
 
 
 def _maybe_touched(light: np.ndarray, region: np.ndarray, boxes: CasterBoxes) -> list[int]:

@@ -9,6 +9,7 @@ once per state.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from itertools import count
@@ -108,9 +109,37 @@ class ActorState:
         return 0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * (z0 + z1)
 
     @cached
+    def model_inverse(self) -> np.ndarray:
+        """The inverse of :meth:`model_matrix`, worked out once per state and read-only.
+
+        A light that moves is taken into each caster's frame through it, so
+        a state that stays pays for the inverse once.
+        """
+        inverse = np.linalg.inv(self.model_matrix())
+        inverse.setflags(write=False)
+        return inverse
+
+    @cached
+    def determinant(self) -> float:
+        """The determinant of its matrix's linear part: 0 flattens it, below 0 mirrors it."""
+        return float(np.linalg.det(self.matrix[:3, :3]))
+
+    @cached
     def mirrored(self) -> bool:
         """Whether its matrix mirrors it (turns outward-wound triangles inward)."""
-        return bool(np.linalg.det(self.matrix[:3, :3]) < 0.0)
+        return self.determinant < 0.0
+
+    @cached
+    def box(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+        """Its world bounds in plain floats, and so read at no numpy call's cost."""
+        low, high = self.bounds.tolist()
+        return (low[0], low[1], low[2]), (high[0], high[1], high[2])
+
+    @cached
+    def diagonal(self) -> float:
+        """The length of its world bounds' diagonal."""
+        (x0, y0, z0), (x1, y1, z1) = self.box
+        return math.sqrt((x1 - x0) ** 2 + (y1 - y0) ** 2 + (z1 - z0) ** 2)
 
     @cached
     def cull_side(self) -> str | None:

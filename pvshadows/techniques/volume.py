@@ -589,11 +589,10 @@ class VolumeTechnique:
         key = (id(caster), light.tobytes())
         kept = self._in_model.get(key) or self._in_model_before.get(key)
         if kept is None or kept[0] is not caster:
-            model = caster.model_matrix()
-            light_model = np.linalg.solve(model, light)
+            light_model = caster.model_inverse @ light
             if light_model[3] != 0.0:
                 light_model = np.append(light_model[:3] / light_model[3], 1.0)
-            kept = (caster, light_model, bool(np.linalg.det(model[:3, :3]) < 0.0))
+            kept = (caster, light_model, caster.mirrored)
         self._in_model[key] = kept
         return kept[1], kept[2]
 

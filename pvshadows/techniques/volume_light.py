@@ -35,10 +35,14 @@ def off_surfaces(
         return light
     position = light[:3]
     push = np.zeros(3)
+    x, y, z = position.tolist()
     for caster, mesh in closed:
-        lo, hi = caster.bounds
-        size = float(np.linalg.norm(hi - lo))
-        if np.any(position < lo - ON_SURFACE * size) or np.any(position > hi + ON_SURFACE * size):
+        (x0, y0, z0), (x1, y1, z1) = caster.box
+        size = caster.diagonal
+        near = ON_SURFACE * size
+        if not (x0 - near <= x <= x1 + near and y0 - near <= y <= y1 + near):
+            continue
+        if not z0 - near <= z <= z1 + near:
             continue
         model = caster.model_matrix()
         points = mesh.points @ model[:3, :3].T + model[:3, 3]
@@ -66,12 +70,14 @@ def enclosing_caster(
     """Return the first closed caster whose inside holds a positional light, or ``None``."""
     if light[3] == 0.0:
         return None
-    position = light[:3]
+    x, y, z = light[:3].tolist()
     for caster, mesh in closed:
-        lo, hi = caster.bounds
-        if np.any(position < lo) or np.any(position > hi) or mesh.how == "two-sided sheet":
+        (x0, y0, z0), (x1, y1, z1) = caster.box
+        if not (x0 <= x <= x1 and y0 <= y <= y1 and z0 <= z <= z1):
             continue
-        model = np.linalg.solve(caster.model_matrix(), np.append(position, 1.0))
+        if mesh.how == "two-sided sheet":
+            continue
+        model = caster.model_inverse @ np.append(light[:3], 1.0)
         if winding_number(mesh.points, mesh.triangles, model[:3] / model[3]) > 0.5:
             return caster
     return None

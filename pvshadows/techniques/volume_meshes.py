@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import weakref
 
-import numpy as np
-
 from pvshadows.geometry.closed import OpenMeshError
 from pvshadows.geometry.volume_casters import VolumeMesh, batches, prepare_volume_mesh
 from pvshadows.model.plan import Cast
@@ -164,7 +162,7 @@ def split_closed(plan: Cast) -> tuple[list[tuple[ActorState, VolumeMesh]], list[
     """
     closed, open_casters = [], []
     for caster in plan.casters:
-        if abs(np.linalg.det(caster.matrix[:3, :3])) == 0.0:
+        if caster.determinant == 0.0:
             plan.notes.append(f"{caster.name} is scaled flat to nothing: it casts no shadow")
             continue
         try:
