@@ -1163,3 +1163,24 @@ def test_a_moving_volume_light_keeps_its_zpass_only_while_it_keeps_its_room():
         assert volume.zmode_of(scene.light) == expected, t
         answers.append(expected)
     assert answers[0] == "zpass" and answers[-1] == "zfail"
+
+
+def test_the_receiving_plane_is_chosen_again_only_for_other_receivers():
+    scene = standard_scene(window_size=(200, 150), light="spot")
+    pl = scene.plotter
+    pl.shadows.enable(technique="planar")
+    draw(pl)
+    memo = pl.shadows._renderers[0].memo
+    chosen = memo.planes_chosen
+    x, y, z = scene.light.position
+    for step in range(4):  # a new plan each frame, the same receivers
+        scene.light.position = (x + 0.01 * (step + 1), y, z)
+        draw(pl)
+    assert memo.planes_chosen == chosen
+    assert any(
+        "receiving plane: actor 'ground'" in note for note in pl.shadows.last_frame.lights[0].notes
+    )
+    scene.sphere.AddPosition(0.01, 0.0, 0.0)  # a receiver's state changes
+    draw(pl)
+    assert memo.planes_chosen == chosen + 1
+    assert pl.shadows.measure(scene.light).misclassified <= MASK_BOUNDS["planar"]

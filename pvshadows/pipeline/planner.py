@@ -127,6 +127,8 @@ class PlanMemo:
         (:meth:`choose_zmode`): only when the renderer's hidden-line removal
         changed, or the camera changed and z-pass was not known to hold
         there.
+    planes_chosen : int
+        Times the receiving plane of planar lights was chosen (:meth:`plane`).
     """
 
     def __init__(self) -> None:
@@ -137,6 +139,8 @@ class PlanMemo:
         self.reposed = 0
         self.listings = 0
         self.zmodes_chosen = 0
+        self.planes_chosen = 0
+        self._plane: tuple[tuple[ActorState, ...], PlaneChoice] | None = None
         self._lights: tuple[vtk.vtkLightCollection, int, tuple[vtk.vtkLight, ...]] | None = None
         self._poses: dict[int, tuple[vtk.vtkLight, int, LightPose]] = {}
         self._tested = 0
@@ -151,12 +155,33 @@ class PlanMemo:
         #: and hidden-line removal, and the room its z-pass had (:class:`ZpassRoom`).
         self._zmodes: dict[int, tuple[VolumePlan, FrameView, bool, ZpassRoom | None]] = {}
 
+    def plane(self, receivers: list[ActorState]) -> PlaneChoice:
+        """Return the receiving plane of planar lights, chosen again only for other receivers.
+
+        Parameters
+        ----------
+        receivers : list of ActorState
+            This frame's receivers.
+
+        Returns
+        -------
+        PlaneChoice
+            :func:`~pvshadows.scene.planes.choose_plane`'s, kept while the
+            receivers are the very same states (a light that moves does not
+            change it).
+        """
+        if self._plane is None or not same_objects(receivers, self._plane[0]):
+            self._plane = (tuple(receivers), choose_plane(receivers))
+            self.planes_chosen += 1
+        return self._plane[1]
+
     def forget(self) -> None:
         """Plan every light again next frame."""
         self._plans = {}
         self._poses = {}
         self._in_view = None
         self._zmodes = {}
+        self._plane = None
 
     def lights_of(self, renderer: vtk.vtkRenderer) -> tuple[vtk.vtkLight, ...]:
         """Return a renderer's lights in order, listed again only when its collection changed.
@@ -641,7 +666,7 @@ class _Shared:
     @cached
     def plane(self) -> PlaneChoice:
         """The receiving plane of planar lights."""
-        return choose_plane(self.snapshot.receivers)
+        return self.memo.plane(self.snapshot.receivers)
 
 
 def _plan_light(

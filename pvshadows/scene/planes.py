@@ -454,14 +454,15 @@ def flattening(plane: np.ndarray, light: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     plane : numpy.ndarray
-        ``(4,)`` ``(n, d)``.
+        ``(4,)`` ``(n, d)``, or ``(k, 4)`` planes.
     light : numpy.ndarray
-        ``(4,)`` ``(position, 1)`` or ``(direction towards the light, 0)``.
+        ``(4,)`` ``(position, 1)`` or ``(direction towards the light, 0)``,
+        or ``(k, 4)`` lights, one per plane.
 
     Returns
     -------
     numpy.ndarray
-        ``(4, 4)`` float64.
+        ``(4, 4)`` float64, or ``(k, 4, 4)``.
 
     Examples
     --------
@@ -474,4 +475,5 @@ def flattening(plane: np.ndarray, light: np.ndarray) -> np.ndarray:
     """
     plane = np.asarray(plane, np.float64)
     light = np.asarray(light, np.float64)
-    return (plane @ light) * np.eye(4) - np.outer(light, plane)
+    dots = np.einsum("...i,...i->...", plane, light)
+    return dots[..., None, None] * np.eye(4) - light[..., :, None] * plane[..., None, :]

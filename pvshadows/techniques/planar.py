@@ -34,7 +34,6 @@ from typing import ClassVar
 import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.geometry.transforms import translation
 from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.mask_target import MaskTexture
 from pvshadows.model.plan import Cast, PlanarCast
@@ -82,14 +81,13 @@ def may_cast(caster: ActorState, plane: np.ndarray, light: np.ndarray) -> bool:
         ``False`` when its bounds lie wholly under the plane, or wholly
         beyond a positional light's height above it.
     """
-    lo, hi = caster.bounds
-    corners = np.array(
-        [[x, y, z, 1.0] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
-    )
-    heights = corners @ plane
-    if heights.max() <= 0.0:
+    # Over a box, a plane's height is greatest and least at corners found axis by axis.
+    (x0, y0, z0), (x1, y1, z1) = caster.box
+    a, b, c, d = plane.tolist()
+    if max(a * x0, a * x1) + max(b * y0, b * y1) + max(c * z0, c * z1) + d <= 0.0:
         return False
-    return light[3] == 0.0 or heights.min() < plane @ light
+    lowest = min(a * x0, a * x1) + min(b * y0, b * y1) + min(c * z0, c * z1) + d
+    return light[3] == 0.0 or lowest < float(plane @ light)
 
 
 def _camera_sees_unlit_side(camera: vtk.vtkCamera, plane: np.ndarray) -> bool:
@@ -98,21 +96,21 @@ def _camera_sees_unlit_side(camera: vtk.vtkCamera, plane: np.ndarray) -> bool:
     return float(plane @ np.append(camera.GetPosition(), 1.0)) < 0.0
 
 
-def flatten(
-    model: np.ndarray, plane: np.ndarray, light: np.ndarray
+def flatten_models(
+    models: np.ndarray, plane: np.ndarray, light: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Return one caster flattened onto the plane from the light, whatever the camera.
+    """Return casters flattened onto the plane from the light, whatever the camera.
 
-    The caster is drawn in a frame centred on its own centre ``o``: the
+    Each caster is drawn in a frame centred on its own centre ``o``: the
     plane and the light are moved there before they are multiplied, and
     :meth:`FlatCasters.to_clip` moves the camera's view there too, so no
     matrix handed to the GPU holds the scene's distance from the origin.
-    All in float64.
+    All in float64, every caster at once.
 
     Parameters
     ----------
-    model : numpy.ndarray
-        ``(4, 4)`` from the caster's (centred) model coordinates to world.
+    models : numpy.ndarray
+        ``(n, 4, 4)`` from each caster's (centred) model coordinates to world.
     plane : numpy.ndarray
         ``(4,)`` the world plane, positive on the light's side, ``|n| = 1``.
     light : numpy.ndarray
@@ -120,37 +118,44 @@ def flatten(
 
     Returns
     -------
-    centre : numpy.ndarray
-        ``(3,)`` the world centre ``o``.
-    flat : numpy.ndarray
-        ``(4, 4)`` from model coordinates to the flattened point, moved by ``-o``.
-    plane_model : numpy.ndarray
-        ``(4,)`` the plane in model coordinates (signed distance in world units).
-    flat_w : numpy.ndarray
-        ``(4,)`` the flattened point's ``w`` as a function of the model point.
+    centres : numpy.ndarray
+        ``(n, 3)`` each world centre ``o``.
+    flats : numpy.ndarray
+        ``(n, 4, 4)`` from model coordinates to the flattened point, moved by ``-o``.
+    planes_model : numpy.ndarray
+        ``(n, 4)`` the plane in model coordinates (signed distance in world units).
+    flat_ws : numpy.ndarray
+        ``(n, 4)`` the flattened point's ``w`` as a function of the model point.
 
     Examples
     --------
     >>> import numpy as np
-    >>> from pvshadows.techniques.planar import flatten
+    >>> from pvshadows.techniques.planar import flatten_models
     >>> from pvshadows.geometry.transforms import translation
     >>> ground, bulb = np.array([0, 0, 1.0, 0]), np.array([0, 0, 4.0, 1])
-    >>> centre, flat, plane, w = flatten(translation([1, 0, 2]), ground, bulb)
-    >>> p = translation(centre) @ flat @ [0, 0, 0, 1.0]
-    >>> (p[:3] / p[3]).tolist(), float(plane @ [0, 0, 0, 1.0])
+    >>> centres, flats, planes, ws = flatten_models(translation([1, 0, 2])[None], ground, bulb)
+    >>> p = translation(centres[0]) @ flats[0] @ [0, 0, 0, 1.0]
+    >>> (p[:3] / p[3]).tolist(), float(planes[0] @ [0, 0, 0, 1.0])
     ([2.0, 0.0, 0.0], 2.0)
     """
-    centre = model[:3, 3] / model[3, 3]
-    local = translation(-centre) @ model
-    plane_local = translation(centre).T @ plane
-    light_local = translation(-centre * light[3]) @ light
-    flat = flattening(plane_local, light_local) @ local
-    return centre, flat, local.T @ plane_local, flat[3].copy()
+    centres = models[:, :3, 3] / models[:, 3, 3:4]
+    # translation(-o) @ model: the first three rows less o times the last
+    local = models.copy()
+    local[:, :3, :] -= centres[:, :, None] * models[:, 3:4, :]
+    # translation(o).T @ plane: the plane's offset moved by n . o
+    planes_local = np.repeat(plane[None], len(models), axis=0)
+    planes_local[:, 3] += centres @ plane[:3]
+    # translation(-o w) @ light: a positional light moved by -o, a direction kept
+    lights_local = np.repeat(light[None], len(models), axis=0)
+    lights_local[:, :3] -= centres * (light[3] * light[3])
+    flats = flattening(planes_local, lights_local) @ local
+    planes_model = np.einsum("nji,nj->ni", local, planes_local)
+    return centres, flats, planes_model, flats[:, 3].copy()
 
 
 @dataclass(frozen=True)
 class FlatCasters:
-    """The casters of one cast flattened onto its plane (:func:`flatten`), made once per cast.
+    """The casters of one cast flattened onto its plane (:func:`flatten_models`), once per cast.
 
     Neither the camera nor the viewport changes them: a camera move only
     composes the camera's matrices with them again (:meth:`to_clip`).
@@ -193,12 +198,8 @@ class FlatCasters:
         FlatCasters
             Their flattenings, stacked.
         """
-        parts = [flatten(caster.model_matrix(), plane, light) for caster in casters]
-        centres, flats, planes, ws = (
-            np.array([part[i] for part in parts]).reshape(len(parts), *shape)
-            for i, shape in enumerate(((3,), (4, 4), (4,), (4,)))
-        )
-        return cls(casters, centres, flats, planes, ws)
+        models = np.array([caster.model_matrix() for caster in casters]).reshape(-1, 4, 4)
+        return cls(casters, *flatten_models(models, plane, light))
 
     def to_clip(self, projection: np.ndarray, view: np.ndarray) -> np.ndarray:
         """Return each caster's matrix from model to clip coordinates, in float64.
@@ -217,11 +218,10 @@ class FlatCasters:
         Examples
         --------
         >>> import numpy as np
-        >>> from pvshadows.techniques.planar import FlatCasters, flatten
+        >>> from pvshadows.techniques.planar import FlatCasters, flatten_models
         >>> from pvshadows.geometry.transforms import translation
         >>> ground, bulb = np.array([0, 0, 1.0, 0]), np.array([0, 0, 4.0, 1])
-        >>> parts = flatten(translation([1, 0, 2]), ground, bulb)
-        >>> flats = FlatCasters([], *(np.array([p]) for p in parts))
+        >>> flats = FlatCasters([], *flatten_models(translation([1, 0, 2])[None], ground, bulb))
         >>> p = flats.to_clip(np.eye(4), np.eye(4))[0] @ [0, 0, 0, 1.0]
         >>> (p[:3] / p[3]).tolist()
         [2.0, 0.0, 0.0]
