@@ -140,7 +140,8 @@ def test_flattening_in_float32_a_million_units_away():
     sphere = pv.Sphere(radius=0.7).points.astype(np.float64)
     points = np.vstack([sphere, [[0.0, 0.0, 3.0], [0.5, 0.0, -1.0]]])  # above the light, buried
     flats = planar.FlatCasters([], *planar.flatten_models(model[None], ground, bulb))
-    to_clip, plane, w = flats.to_clip(projection, view)[0], flats.planes_model[0], flats.flat_ws[0]
+    to_clip = flats.to_clip(projection @ view)[0]
+    plane, w = flats.planes_model[0], flats.flat_ws[0]
     homogeneous = np.hstack([points, np.ones((len(points), 1))])
     # The GPU's float32 arithmetic ...
     clip = homogeneous.astype(np.float32) @ to_clip.astype(np.float32).T

@@ -141,12 +141,15 @@ class PlanarMaskPass:
             state.vtkglEnable(gl.GL_BLEND)
             state.vtkglBlendFunc(gl.GL_ZERO, gl.GL_SRC_COLOR)
             program = self._bind()
-            for draw in draws:
-                program.SetUniformMatrix4x4v("modelToClip", 1, column_major(draw.model_to_clip))
-                program.SetUniform4f(
-                    "planeModel", np.asarray(draw.plane_model, np.float32).tolist()
-                )
-                program.SetUniform4f("flatW", np.asarray(draw.flat_w, np.float32).tolist())
+            # Every draw's values rounded to float32 at once, not draw by draw.
+            matrices = column_major(np.array([d.model_to_clip for d in draws]).reshape(-1, 4, 4))
+            planes = np.array([d.plane_model for d in draws], np.float32).tolist()
+            ws = np.array([d.flat_w for d in draws], np.float32).tolist()
+            for number, draw in enumerate(draws):
+                matrix = matrices[16 * number : 16 * number + 16]
+                program.SetUniformMatrix4x4v("modelToClip", 1, matrix)
+                program.SetUniform4f("planeModel", planes[number])
+                program.SetUniform4f("flatW", ws[number])
                 program.SetUniformf("transmittance", float(draw.transmittance))
                 draw.buffers.draw_triangles(program)
 

@@ -189,8 +189,10 @@ class VolumePasses:
             gl.glClearStencil(0)
             state.vtkglClear(gl.GL_DEPTH_BUFFER_BIT | gl.GL_STENCIL_BUFFER_BIT)
             program = self._bind("depth")
-            for draw in draws:
-                program.SetUniformMatrix4x4v("modelToClip", 1, column_major(draw.model_to_clip))
+            matrices = _float32_matrices(draws)
+            for number, draw in enumerate(draws):
+                matrix = matrices[16 * number : 16 * number + 16]
+                program.SetUniformMatrix4x4v("modelToClip", 1, matrix)
                 draw.buffers.draw_triangles(program)
         return record
 
@@ -276,22 +278,28 @@ class VolumePasses:
             up = (gl.GL_KEEP, gl.GL_INCR_WRAP, gl.GL_KEEP)
             down = (gl.GL_KEEP, gl.GL_DECR_WRAP, gl.GL_KEEP)
         front, back = (up, down) if zmode == "zpass" else (down, up)
+        matrices = _float32_matrices(batch)
+        lights = np.array([d.light_model for d in batch], np.float32).tolist()
         for mirrored in (False, True):
-            draws = [d for d in batch if d.mirrored == mirrored]
-            if not draws:
+            numbers = [n for n, d in enumerate(batch) if d.mirrored == mirrored]
+            if not numbers:
                 continue
             first, second = (back, front) if mirrored else (front, back)
             state.vtkglStencilOpSeparate(gl.GL_FRONT, *first)
             state.vtkglStencilOpSeparate(gl.GL_BACK, *second)
-            for draw in draws:
-                self._draw_volume(draw, caps=zmode == "zfail")
+            for n in numbers:
+                matrix = matrices[16 * n : 16 * n + 16]
+                self._draw_volume(batch[n], matrix, lights[n], caps=zmode == "zfail")
 
-    def _draw_volume(self, draw: VolumeDraw, caps: bool) -> None:
+    def _draw_volume(
+        self, draw: VolumeDraw, matrix: np.ndarray, light: list[float], caps: bool
+    ) -> None:
+        """Draw one volume, given its model-to-clip matrix and light in float32."""
         gl = self._gl
         program = self._bind(draw.extrude)
-        program.SetUniformMatrix4x4v("modelToClip", 1, column_major(draw.model_to_clip))
+        program.SetUniformMatrix4x4v("modelToClip", 1, matrix)
         if draw.extrude == "gpu":
-            program.SetUniform4f("lightModel", np.asarray(draw.light_model, np.float32).tolist())
+            program.SetUniform4f("lightModel", light)
             program.SetUniformi("caps", int(caps))
             program.SetUniformf("capDepthOffset", CAP_DEPTH_OFFSET)
             program.SetUniformf("extrudeTo", float(draw.extrude_to))
@@ -335,10 +343,12 @@ class VolumePasses:
                 gl.GL_SRC_ALPHA, gl.GL_ONE_MINUS_SRC_ALPHA, gl.GL_ZERO, gl.GL_ONE
             )
             gl.glEnable(gl.GL_DEPTH_CLAMP)
-            for draw in draws:
+            matrices = _float32_matrices(draws)
+            lights = np.array([d.light_model for d in draws], np.float32).tolist()
+            for n, draw in enumerate(draws):
                 program = self._bind(draw.extrude)
                 program.SetUniform4f("colour", list(colour))
-                self._draw_volume(draw, caps=False)
+                self._draw_volume(draw, matrices[16 * n : 16 * n + 16], lights[n], caps=False)
 
     def release(self) -> None:
         """Release the programs and the empty vertex array."""
@@ -346,3 +356,11 @@ class VolumePasses:
         if self._empty is not None:
             self._empty.release()
             self._empty = None
+
+
+def _float32_matrices(draws: list) -> np.ndarray:
+    """Return every draw's ``model_to_clip`` in OpenGL's column order, rounded to float32 at once.
+
+    Draw ``n``'s matrix is ``[16 n, 16 n + 16)`` of the result.
+    """
+    return column_major(np.array([d.model_to_clip for d in draws]).reshape(-1, 4, 4))

@@ -42,6 +42,7 @@ from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.planes import PlaneChoice, facing, flattening
 from pvshadows.scene.triangles import vtk_id
+from pvshadows.scene.view import FrameView
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, LightFrame
 from pvshadows.techniques.screen_mask import facing_shading, mask_shading, mask_uniforms
@@ -58,8 +59,9 @@ class _LightState:
     #: What the mask was last brought up to date for (the cast, snapshot, view and
     #: target size) and the notes that said about it (:meth:`PlanarTechnique.again`).
     held: tuple | None = None
-    #: The cast last drawn, with the casters that may cast onto its plane,
-    #: flattened (:class:`FlatCasters`): the camera changes none of it.
+    #: The cast last drawn, with its light, its plane facing the light, the casters
+    #: that may cast onto it flattened (:class:`FlatCasters`) and their keys and
+    #: transmittances: the camera changes none of it.
     flattened: tuple | None = None
 
 
@@ -90,10 +92,12 @@ def may_cast(caster: ActorState, plane: np.ndarray, light: np.ndarray) -> bool:
     return light[3] == 0.0 or lowest < float(plane @ light)
 
 
-def _camera_sees_unlit_side(camera: vtk.vtkCamera, plane: np.ndarray) -> bool:
-    if camera.GetParallelProjection():
-        return float(np.dot(plane[:3], camera.GetDirectionOfProjection())) > 0.0
-    return float(plane @ np.append(camera.GetPosition(), 1.0)) < 0.0
+def _camera_sees_unlit_side(view: FrameView, plane: np.ndarray) -> bool:
+    # VTK's own methods, called on the class: PyVista's wrappers check every attribute
+    camera = view.stamp[0]
+    if vtk.vtkCamera.GetParallelProjection(camera):
+        return float(np.dot(plane[:3], vtk.vtkCamera.GetDirectionOfProjection(camera))) > 0.0
+    return float(plane @ np.append(vtk.vtkCamera.GetPosition(camera), 1.0)) < 0.0
 
 
 def flatten_models(
@@ -201,19 +205,20 @@ class FlatCasters:
         models = np.array([caster.model_matrix() for caster in casters]).reshape(-1, 4, 4)
         return cls(casters, *flatten_models(models, plane, light))
 
-    def to_clip(self, projection: np.ndarray, view: np.ndarray) -> np.ndarray:
+    def to_clip(self, world_to_clip: np.ndarray) -> np.ndarray:
         """Return each caster's matrix from model to clip coordinates, in float64.
 
         Parameters
         ----------
-        projection, view : numpy.ndarray
-            ``(4, 4)`` the camera's projection and world-to-view matrices.
+        world_to_clip : numpy.ndarray
+            ``(4, 4)`` the camera's projection times its world-to-view matrix.
 
         Returns
         -------
         numpy.ndarray
-            ``(n, 4, 4)``: projection, the view moved to each caster's centre,
-            and its flattening.
+            ``(n, 4, 4)``: the camera's matrix moved to each caster's centre
+            (composed in float64, so that its offset from the origin cancels
+            there, before anything is rounded to float32), then its flattening.
 
         Examples
         --------
@@ -222,14 +227,14 @@ class FlatCasters:
         >>> from pvshadows.geometry.transforms import translation
         >>> ground, bulb = np.array([0, 0, 1.0, 0]), np.array([0, 0, 4.0, 1])
         >>> flats = FlatCasters([], *flatten_models(translation([1, 0, 2])[None], ground, bulb))
-        >>> p = flats.to_clip(np.eye(4), np.eye(4))[0] @ [0, 0, 0, 1.0]
+        >>> p = flats.to_clip(np.eye(4))[0] @ [0, 0, 0, 1.0]
         >>> (p[:3] / p[3]).tolist()
         [2.0, 0.0, 0.0]
         """
-        moved = np.repeat(view[None], len(self.centres), axis=0)
-        # The view times a translation to the centre: only its last column changes.
-        moved[:, :, 3] = self.centres @ view[:, :3].T + view[:, 3]
-        return projection @ moved @ self.flats
+        moved = np.repeat(world_to_clip[None], len(self.centres), axis=0)
+        # The camera's matrix times a translation to the centre: only its last column changes.
+        moved[:, :, 3] = self.centres @ world_to_clip[:, :3].T + world_to_clip[:, 3]
+        return moved @ self.flats
 
 
 def flat_draws(flats: FlatCasters, context: FrameContext) -> list[FlatDraw]:
@@ -247,7 +252,7 @@ def flat_draws(flats: FlatCasters, context: FrameContext) -> list[FlatDraw]:
     list of FlatDraw
         One per caster.
     """
-    to_clip = flats.to_clip(context.view.projection, context.view.world_to_view)
+    to_clip = flats.to_clip(context.view.world_to_clip)
     return [
         FlatDraw(context.buffers.get(caster), matrix, plane, w, caster.transmittance)
         for caster, matrix, plane, w in zip(
@@ -332,26 +337,38 @@ class PlanarTechnique:
         self, plan: Cast, context: FrameContext, state: _LightState, choice: PlaneChoice
     ) -> list[PassReport]:
         assert choice.actor is not None and choice.plane is not None
-        light = plan.pose.homogeneous()
-        plane = facing(choice.plane, light)
+        kept = state.flattened
+        if kept is not None and kept[0] is plan:
+            light, plane = kept[1], kept[2]
+        else:
+            kept = None
+            light = plan.pose.homogeneous()
+            plane = facing(choice.plane, light)
         name = choice.actor.name
         if not plane @ light > 0.0:
             plan.notes.append(f"the light lies in the plane of {name}: it only grazes it")
             return [PassReport(_PASS, "skipped", "the light lies in the plane")]
-        if _camera_sees_unlit_side(context.camera, plane):
+        if _camera_sees_unlit_side(context.view, plane):
             plan.notes.append(
                 f"the camera sees the side of {name} that faces away from the light: "
                 "it is unlit, nothing to flatten"
             )
             return [PassReport(_PASS, "skipped", "the camera sees the plane's unlit side")]
-        if state.flattened is None or state.flattened[0] is not plan:
+        if kept is None:
             between = [
                 c
                 for c in plan.casters
                 if vtk_id(c.actor) != state.plane_actor and may_cast(c, plane, light)
             ]
-            state.flattened = (plan, FlatCasters.of(between, plane, light))
-        flats = state.flattened[1]
+            keys = tuple((*c.key(), c.transmittance) for c in between)
+            kept = state.flattened = (
+                plan,
+                light,
+                plane,
+                FlatCasters.of(between, plane, light),
+                keys,
+            )
+        flats = kept[3]
         casters = flats.casters
         if not casters:
             if state.key != ("lit",):
@@ -366,7 +383,7 @@ class PlanarTechnique:
             plan.pose.key(),
             context.view.world_to_clip.tobytes(),
             state.mask.size,
-            tuple((*c.key(), c.transmittance) for c in casters),
+            kept[4],
         )
         if key == state.key:
             return [_reused(state)]
