@@ -1065,13 +1065,37 @@ def test_a_screen_mask_is_drawn_again_only_when_the_camera_or_the_actors_changed
     assert pl.shadows.measure(scene.light).misclassified <= MASK_BOUNDS[technique]
 
 
+def volume_scene(light="spot", camera=None):
+    """The standard scene drawn twice with ``technique="volume"``: it, its renderer's shadows."""
+    scene = standard_scene(window_size=(200, 150), light=light)
+    if camera is not None:
+        scene.plotter.camera_position = camera
+    scene.plotter.shadows.enable(technique="volume")
+    draw(scene.plotter)
+    draw(scene.plotter)
+    return scene, scene.plotter.shadows._renderers[0]
+
+
+def walked_zmodes(scene, shadows, walk, steps):
+    """Draw each step of ``walk(t)``; check its z-mode against the full test's for its view."""
+    from pvshadows.pipeline.volume_zmode import choose_zmode
+
+    volume = shadows.technique("volume")
+    answers = []
+    for t in np.linspace(0.0, 1.0, steps):
+        walk(t)
+        draw(scene.plotter)
+        cast, view = shadows.plans[0].cast, shadows._context.view
+        light, boxes = cast.volume.light, cast.volume.caster_boxes
+        expected, _ = choose_zmode("auto", light, scene.plotter.renderer, boxes, view)
+        assert volume.zmode_of(scene.light) == expected, t
+        answers.append(expected)
+    return answers
+
+
 def test_a_volume_light_chooses_zpass_or_zfail_again_only_for_a_new_camera_or_hidden_lines():
-    scene = standard_scene(window_size=(200, 150), light="spot")
+    scene, shadows = volume_scene()
     pl = scene.plotter
-    pl.shadows.enable(technique="volume")
-    draw(pl)
-    draw(pl)
-    shadows = pl.shadows._renderers[0]
     chosen = shadows.memo.zmodes_chosen
     for _ in range(3):
         draw(pl)
@@ -1089,29 +1113,16 @@ def test_a_volume_light_chooses_zpass_or_zfail_again_only_for_a_new_camera_or_hi
 
 
 def test_a_kept_zpass_holds_while_the_camera_keeps_its_room_and_never_inside_a_volume():
-    from pvshadows.pipeline.volume_zmode import choose_zmode
-
-    scene = standard_scene(window_size=(200, 150), light="spot")
+    scene, shadows = volume_scene()
     pl = scene.plotter
-    pl.shadows.enable(technique="volume")
-    draw(pl)
-    draw(pl)
-    shadows = pl.shadows._renderers[0]
-    volume = shadows.technique("volume")
     # The camera walks into the box's shadow (light at (0.3, -0.2, 3.5), box round
     # (-2, -0.3, 1.7)): every frame's choice is the full test's for that frame's view.
-    answers = []
-    for t in np.linspace(0.0, 1.0, 40):
-        pl.camera.position = (1 - t) * np.array([-8.0, -6.0, 1.0]) + t * np.array(
-            [-3.15, -0.35, 0.8]
-        )
-        draw(pl)
-        cast = shadows.plans[0].cast
-        view = shadows._context.view
-        boxes = cast.volume.caster_boxes
-        expected, _ = choose_zmode("auto", cast.volume.light, pl.renderer, boxes, view)
-        assert volume.zmode_of(scene.light) == expected, t
-        answers.append(expected)
+    start, end = np.array([-8.0, -6.0, 1.0]), np.array([-3.15, -0.35, 0.8])
+
+    def walk(t):
+        pl.camera.position = (1 - t) * start + t * end
+
+    answers = walked_zmodes(scene, shadows, walk, 40)
     assert answers[0] == "zpass" and answers[-1] == "zfail"
     pl.camera.position = (11.0, -12.5, 9.5)  # back out, then a slow orbit
     draw(pl)
@@ -1119,49 +1130,31 @@ def test_a_kept_zpass_holds_while_the_camera_keeps_its_room_and_never_inside_a_v
     for _ in range(10):  # far from every shadow volume
         pl.camera.Azimuth(0.5)
         draw(pl)
-        assert volume.zmode_of(scene.light) == "zpass"
+        assert shadows.technique("volume").zmode_of(scene.light) == "zpass"
     assert 1 <= shadows.memo.zmodes_chosen - chosen <= 5
 
 
 def test_a_moving_volume_light_keeps_its_zpass_only_while_it_keeps_its_room():
-    from pvshadows.pipeline.volume_zmode import choose_zmode
-
-    scene = standard_scene(window_size=(200, 150), light="spot")
-    pl = scene.plotter
-    pl.shadows.enable(technique="volume")
-    draw(pl)
-    shadows = pl.shadows._renderers[0]
-    volume = shadows.technique("volume")
+    scene, shadows = volume_scene()
     chosen = shadows.memo.zmodes_chosen
     x, y, z = scene.light.position
     for step in range(10):  # a new cast each frame, far from every volume
         scene.light.position = (x + 0.01 * (step + 1), y, z)
-        draw(pl)
-        assert volume.zmode_of(scene.light) == "zpass"
-        notes = pl.shadows.last_frame.lights[0].notes
+        draw(scene.plotter)
+        assert shadows.technique("volume").zmode_of(scene.light) == "zpass"
+        notes = scene.plotter.shadows.last_frame.lights[0].notes
         assert "zpass: the camera is outside every shadow volume" in notes
     assert shadows.memo.zmodes_chosen - chosen <= 2
     # A point light walks to where the camera is in the box's shadow: every frame's
     # choice is the full test's, though the walk starts with room to spare.
-    scene = standard_scene(window_size=(200, 150), light="point")
-    pl = scene.plotter
-    pl.camera_position = [(-6, -0.3, 4.5), (0, 0, 0.3), (0, 0, 1)]
-    pl.shadows.enable(technique="volume")
-    draw(pl)
-    shadows = pl.shadows._renderers[0]
-    volume = shadows.technique("volume")
-    answers = []
-    for t in np.linspace(0.0, 1.0, 30):
-        scene.light.position = tuple(
-            (1 - t) * np.array([-6.0, -6, 6]) + t * np.array([0, -0.3, 0.3])
-        )
-        draw(pl)
-        cast = shadows.plans[0].cast
-        view = shadows._context.view
-        boxes = cast.volume.caster_boxes
-        expected, _ = choose_zmode("auto", cast.volume.light, pl.renderer, boxes, view)
-        assert volume.zmode_of(scene.light) == expected, t
-        answers.append(expected)
+    camera = [(-6, -0.3, 4.5), (0, 0, 0.3), (0, 0, 1)]
+    scene, shadows = volume_scene("point", camera)
+    start, end = np.array([-6.0, -6, 6]), np.array([0, -0.3, 0.3])
+
+    def walk(t):
+        scene.light.position = tuple((1 - t) * start + t * end)
+
+    answers = walked_zmodes(scene, shadows, walk, 30)
     assert answers[0] == "zpass" and answers[-1] == "zfail"
 
 
