@@ -1100,7 +1100,7 @@ def test_a_volume_light_chooses_zpass_or_zfail_again_only_for_a_new_camera_or_hi
     for _ in range(3):
         draw(pl)
     assert shadows.memo.zmodes_chosen == chosen
-    pl.camera.Azimuth(5)
+    pl.camera.Azimuth(20)  # further than a kept z-pass's room
     draw(pl)
     draw(pl)
     assert shadows.memo.zmodes_chosen == chosen + 1
@@ -1127,11 +1127,11 @@ def test_a_kept_zpass_holds_while_the_camera_keeps_its_room_and_never_inside_a_v
     pl.camera.position = (11.0, -12.5, 9.5)  # back out, then a slow orbit
     draw(pl)
     chosen = shadows.memo.zmodes_chosen
-    for _ in range(10):  # far from every shadow volume
-        pl.camera.Azimuth(0.5)
+    for _ in range(20):  # far from every shadow volume
+        pl.camera.Azimuth(1.0)
         draw(pl)
         assert shadows.technique("volume").zmode_of(scene.light) == "zpass"
-    assert 1 <= shadows.memo.zmodes_chosen - chosen <= 5
+    assert 1 <= shadows.memo.zmodes_chosen - chosen <= 8
 
 
 def test_a_moving_volume_light_keeps_its_zpass_only_while_it_keeps_its_room():

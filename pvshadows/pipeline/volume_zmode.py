@@ -242,13 +242,15 @@ def _maybe_touched(light: np.ndarray, region: np.ndarray, boxes: CasterBoxes) ->
 
 
 def zpass_clearance(light: np.ndarray, region: np.ndarray | None, boxes: CasterBoxes) -> float:
-    """Return how far the camera's near region may move with z-pass still the choice.
+    """Return how far the camera's near region and the light may move with z-pass still the choice.
 
     Where the box around a positional light and the near region lies apart
     from every caster's box (the one-array test of :func:`choose_zmode`
-    then answers z-pass), it stays apart while no point of the region
-    moves by more than half the narrowest gap along any axis: the next
-    test would answer z-pass again, with the same words. Nothing is kept
+    then answers z-pass), it stays apart while neither the light nor any
+    point of the region moves, along any axis, by as much as the
+    narrowest of the gaps (less the tests' slack): each face of the box
+    around them moves no further than they do, so the next test would
+    answer z-pass again, with the same words. Nothing is kept
     for a directional light (its sweep grows with the region), for a
     parallel projection, or where some box is within reach of the region.
 
@@ -275,7 +277,7 @@ def zpass_clearance(light: np.ndarray, region: np.ndarray | None, boxes: CasterB
     >>> boxes = CasterBoxes.of([("box", np.array([[-1.0, -1, 0], [1, 1, 2]]))])
     >>> region = np.array([[5.0, 0, 1]] * 5)  # the camera 4 from the box
     >>> round(zpass_clearance(np.array([5.0, 0, 6, 1]), region, boxes), 6)
-    2.0
+    4.0
     """
     if region is None or light[3] == 0.0:
         return 0.0
@@ -285,4 +287,4 @@ def zpass_clearance(light: np.ndarray, region: np.ndarray | None, boxes: CasterB
     low, high = hull.min(axis=0), hull.max(axis=0)
     gaps = np.maximum(low - boxes.high, boxes.low - high).max(axis=1)
     slack = 1e-9 * max(float(np.abs(hull).max()), boxes.size, 1e-300)
-    return max(0.0, 0.5 * (float(gaps.min()) - 4.0 * slack))
+    return max(0.0, float(gaps.min()) - 4.0 * slack)
