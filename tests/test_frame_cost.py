@@ -1177,3 +1177,21 @@ def test_the_receiving_plane_is_chosen_again_only_for_other_receivers():
     draw(pl)
     assert memo.planes_chosen == chosen + 1
     assert pl.shadows.measure(scene.light).misclassified <= MASK_BOUNDS["planar"]
+
+
+def test_a_forced_zpass_says_it_may_miscount_in_every_frame_a_caster_is_open_to_view():
+    # Seen through a wireframe caster, "auto" would count with z-fail: the forced
+    # z-pass keeps its warning note, frame after frame, however far from any volume.
+    scene = standard_scene(window_size=(200, 150), light="spot")
+    pl = scene.plotter
+    scene.sphere.GetProperty().SetRepresentationToWireframe()
+    with pytest.warns(UserWarning, match="may miscount"):
+        pl.shadows.enable(technique="volume", zmode="zpass")
+        draw(pl)
+    x, y, z = scene.light.position
+    for step in range(4):  # a new cast each frame, and a new view
+        scene.light.position = (x + 0.01 * (step + 1), y, z)
+        pl.camera.Azimuth(0.5)
+        draw(pl)
+        notes = pl.shadows.last_frame.lights[0].notes
+        assert any(n.startswith("zpass: zpass forced") and "may miscount" in n for n in notes)

@@ -218,6 +218,7 @@ class ZpassRoom:
         -------
         ZpassRoom or None
             ``None`` for z-fail, a forced z-fail, a light inside a caster,
+            a caster open to view (``"auto"`` counts with z-fail then),
             a directional light, a parallel projection, or a z-pass by a
             narrow margin: the choice is made again at the next view.
         """
@@ -226,6 +227,8 @@ class ZpassRoom:
             or volume.zmode != "zpass"
             or cast.settings.zmode == "zfail"
         ):
+            return None
+        if not hidden and not all(caster.faces_drawn for caster, _ in volume.closed):
             return None
         region = view.near_region
         room = zpass_clearance(volume.light, region, volume.caster_boxes)
