@@ -14,7 +14,6 @@ faces without casters) it reports in the same frame's words.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import fields, replace
 from functools import partial
@@ -35,11 +34,12 @@ from pvshadows.model.plan import (
 )
 from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.cube_passes import cube_passes
+from pvshadows.pipeline.far_lights import fit_far_point, fit_far_spot, fitted_to_casters
 from pvshadows.pipeline.reach import ReachCache, same_objects
 from pvshadows.pipeline.sight import ViewSight
 from pvshadows.pipeline.volume_plan import ZpassRoom, choose_volume_zmode, plan_volume
 from pvshadows.scene.actor_state import ActorState
-from pvshadows.scene.culling import box_around, box_corners
+from pvshadows.scene.culling import box_around
 from pvshadows.scene.light_kit import KeyLights, unshadowed_reason
 from pvshadows.scene.lights import (
     LightKind,
@@ -53,16 +53,6 @@ from pvshadows.scene.lights import (
 from pvshadows.scene.planes import PlaneChoice, choose_plane, sole_plane
 from pvshadows.scene.snapshot import RECEIVERS, Snapshot
 from pvshadows.scene.view import FrameView
-
-#: A point light's casters within a cone of this half angle (degrees) get a map of that cone.
-FIT_CONE_BELOW = 30.0
-#: Casters' radius over their distance below which a point or spot light casts from an
-#: orthographic map. Farther, float32 positions at the light's distance round by more than
-#: a perspective map's depth bias (the standard scene: 0.57 % wrong at 1e4, 7.3 % at 2e4),
-#: while the rays' spread over the casters moves no edge by a texel (0.026-0.028 % there).
-PARALLEL_BELOW = 2e-3
-#: The sine of :data:`FIT_CONE_BELOW`.
-_FIT_CONE_SINE = float(np.sin(np.radians(FIT_CONE_BELOW)))
 
 
 def _technique_for(
@@ -328,7 +318,7 @@ class PlanMemo:
         mask, follow the light), a spot light's cover still holds its cone
         so that it reaches the very actors it did (:meth:`ReachCache.reaches`
         hands back the same answers), and no map is to be fitted to its
-        casters from where it now stands (:func:`_fitted_to_casters`). The
+        casters from where it now stands (:func:`fitted_to_casters`). The
         plan then takes the new pose; else ``None``, and the light is
         planned from the start.
         """
@@ -359,7 +349,7 @@ class PlanMemo:
                 return None
         elif reach.reaches(plan.key, pose, snapshot) is not reached.hits:
             return None
-        if _fitted_to_casters(cast.technique, pose, reached.box) is not None:
+        if fitted_to_casters(cast.technique, pose, reached.box) is not None:
             return None
         del plan.notes[planned:]
         # field by field: dataclasses.replace costs five times as much, once a frame
@@ -715,11 +705,11 @@ def _plan_light(
         plan.notes.append("no caster is in the light's reach: nothing to shadow, no pass")
         return plan, use, None
     plan.notes.append(why)
-    seen_from = _fitted_to_casters(technique, pose, box)
+    seen_from = fitted_to_casters(technique, pose, box)
     if seen_from is not None and technique == "cubemap":
-        technique, pose = _fit_far_point(pose, seen_from, plan.notes)
+        technique, pose = fit_far_point(pose, seen_from, plan.notes)
     elif seen_from is not None:
-        pose, use = _fit_far_spot(pose, seen_from, shared.seen, plan.notes), EVERY_RECEIVER
+        pose, use = fit_far_spot(pose, seen_from, shared.seen, plan.notes), EVERY_RECEIVER
     if technique == "cubemap" and settings.passes == "auto":
         settings = cube_passes(settings, within, snapshot, plan.notes)
     if pose.kind is LightKind.SPOT and plan.kind is LightKind.SPOT:
@@ -768,106 +758,3 @@ def _planar_cast(cast: Cast, plane: PlaneChoice) -> PlanarCast:
 
 def _fields_of(cast: Cast) -> dict[str, Any]:
     return {f.name: getattr(cast, f.name) for f in fields(Cast)}
-
-
-class _SeenFrom(NamedTuple):
-    """The sphere around casters' box as a light sees it."""
-
-    radius: float
-    distance: float
-    #: From the light to the sphere's centre, in plain floats.
-    away: list[float]
-
-    @property
-    def direction(self) -> np.ndarray:
-        """The unit vector from the light to the centre."""
-        return np.array(self.away) / max(self.distance, 1e-300)
-
-
-def _casters_seen_from(pose: LightPose, box: np.ndarray) -> _SeenFrom:
-    """Return the sphere around casters' ``(2, 3)`` box: its radius, distance and offset."""
-    # Plain floats for three-vectors, written out: numpy's calls, and a generator's, cost
-    # more than the sums.
-    lo, hi = box.tolist()
-    (lx, ly, lz), (hx, hy, hz) = lo, hi
-    px, py, pz = pose.position.tolist()
-    away = [(lx + hx) / 2.0 - px, (ly + hy) / 2.0 - py, (lz + hz) / 2.0 - pz]
-    return _SeenFrom(math.dist(lo, hi) / 2.0, math.hypot(*away), away)
-
-
-def _parallel(pose: LightPose, seen_from: _SeenFrom, notes: list[str]) -> LightPose:
-    radius, distance, _ = seen_from
-    half = float(np.degrees(np.arcsin(radius / distance)))
-    notes.append(
-        f"the casters subtend {2 * half:.3g} degrees from the light: its rays are nearly "
-        "parallel there, and a perspective map this far away would round depths by more "
-        "than its bias, so an orthographic map along them"
-    )
-    return LightPose(LightKind.DIRECTIONAL, pose.position, seen_from.direction, 180.0)
-
-
-def _far(seen_from: _SeenFrom) -> bool:
-    """Whether casters (:func:`_casters_seen_from`) are so far that the rays are nearly parallel."""
-    radius, distance, _ = seen_from
-    return distance > 0.0 and radius / distance < PARALLEL_BELOW
-
-
-def _fit_far_spot(
-    pose: LightPose,
-    seen_from: _SeenFrom,
-    seen: list[ActorState],
-    notes: list[str],
-) -> LightPose:
-    """Give a spot light far from its casters (:func:`_far`) an orthographic map along its rays.
-
-    Its map is already fitted to the casters; only past :data:`PARALLEL_BELOW`
-    does it change, for the float32 precision of depths at that distance,
-    and only when the cone holds every receiver the camera sees (an
-    orthographic lookup has no cone to leave the rest unlit). ``seen_from``
-    is what :func:`_casters_seen_from` says of the casters.
-    """
-    corners = box_corners(np.array([r.bounds for r in seen]).reshape(-1, 2, 3)).reshape(-1, 3)
-    rays = corners - pose.position
-    cosines = rays @ pose.direction / np.linalg.norm(rays, axis=1)
-    if np.any(cosines < np.cos(np.radians(pose.cone_angle))):
-        return pose
-    return _parallel(pose, seen_from, notes)
-
-
-def _fitted_to_casters(technique: str, pose: LightPose, box: np.ndarray) -> _SeenFrom | None:
-    """Return how a light sees its casters when its map is to be fitted to them, else ``None``.
-
-    A point light's cube gives way to a map of its casters' cone when they
-    subtend less than :data:`FIT_CONE_BELOW` (:func:`_fit_far_point`); a
-    spot light's map turns orthographic when they are :func:`_far`
-    (:func:`_fit_far_spot`). ``box`` is the ``(2, 3)`` box around the casters.
-    """
-    if technique == "cubemap" and pose.kind is LightKind.POINT:
-        seen_from = _casters_seen_from(pose, box)
-        return None if seen_from.distance <= seen_from.radius / _FIT_CONE_SINE else seen_from
-    if technique == "map" and pose.kind is LightKind.SPOT:
-        seen_from = _casters_seen_from(pose, box)
-        return seen_from if _far(seen_from) else None
-    return None
-
-
-def _fit_far_point(
-    pose: LightPose, seen_from: _SeenFrom, notes: list[str]
-) -> tuple[str, LightPose]:
-    """Give a point light whose casters subtend a small angle a perspective map of their cone.
-
-    Seen from far away, casters cover a few texels of one cube face and the
-    texel-sized biases swallow their shadows; a map aimed at them spends
-    every texel on them, at any distance. Receivers outside the cone stay
-    lit (nothing there can shadow them). ``seen_from`` is what
-    :func:`_fitted_to_casters` says of the casters.
-    """
-    radius, distance, _ = seen_from
-    half = float(np.degrees(np.arcsin(radius / distance)))
-    if radius / distance < PARALLEL_BELOW:
-        return "map", _parallel(pose, seen_from, notes)
-    notes.append(
-        f"the casters subtend {2 * half:.3g} degrees from the light: a perspective map "
-        "aimed at them instead of a cube"
-    )
-    return "map", LightPose(LightKind.SPOT, pose.position, seen_from.direction, half)
