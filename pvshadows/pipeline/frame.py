@@ -26,7 +26,8 @@ from pvshadows.gl.timing import PassTimer
 from pvshadows.model.plan import Cast, LightPlan
 from pvshadows.model.report import FrameFailure, FrameReport, LightReport
 from pvshadows.model.settings import ShadowSettings
-from pvshadows.pipeline.planner import PlanMemo, plan_frame
+from pvshadows.pipeline.plan_memo import PlanMemo
+from pvshadows.pipeline.planner import plan_frame
 from pvshadows.pipeline.reach import ReachCache
 from pvshadows.scene.impostors import LIGHT_SPACE_TECHNIQUES, lit_without_triangles
 from pvshadows.scene.light_kit import KeyLights

@@ -63,7 +63,7 @@ def plan_volume(
         (asked only when the settings want it).
     choose_zmode : callable
         Chooses the plan's z-pass or z-fail for this frame's camera
-        (:meth:`pvshadows.pipeline.planner.PlanMemo.choose_zmode`, which
+        (:meth:`pvshadows.pipeline.plan_memo.PlanMemo.choose_zmode`, which
         calls :func:`choose_volume_zmode` where it must).
 
     Returns
