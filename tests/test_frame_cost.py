@@ -1195,3 +1195,21 @@ def test_a_forced_zpass_says_it_may_miscount_in_every_frame_a_caster_is_open_to_
         draw(pl)
         notes = pl.shadows.last_frame.lights[0].notes
         assert any(n.startswith("zpass: zpass forced") and "may miscount" in n for n in notes)
+
+
+def test_a_still_volume_frame_names_no_caster_however_many_there_are(monkeypatch):
+    from pvshadows.techniques import volume as volume_module
+
+    pl, light, _ = crowd_scene(60, window_size=(200, 150))
+    pl.shadows.enable(technique="volume")
+    draw(pl)
+    draw(pl)
+    named = []
+    real = volume_module.vtk_id
+    monkeypatch.setattr(volume_module, "vtk_id", lambda obj: named.append(obj) or real(obj))
+    for _ in range(3):
+        draw(pl)
+    assert named == []  # the same casts: nothing to release, no caster listed
+    light.intensity = 0.0  # the light casts nothing now: its mask goes
+    draw(pl)
+    assert pl.shadows._renderers[0].technique("volume").mask_of(light) is None

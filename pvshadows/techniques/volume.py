@@ -160,6 +160,8 @@ class VolumeTechnique:
         self._depth_of: tuple = (None, False, [], ())
         self._fallbacks = OpenCasterFallbacks(window)
         self._context: FrameContext | None = None
+        #: The volume casts of the last :meth:`keep_only`.
+        self._kept_for: tuple[Cast, ...] = ()
         #: Each light in each caster's model coordinates, and whether the caster's
         #: matrix mirrors, by caster and light: this frame's, and last frame's.
         self._in_model: dict[tuple[int, bytes], tuple[ActorState, np.ndarray, bool]] = {}
@@ -642,9 +644,19 @@ class VolumeTechnique:
         Parameters
         ----------
         plans : list of Cast
-            This frame's casts.
+            This frame's casts: the very casts of the last call (a frame that
+            planned nothing) leave nothing to release, and their casters are
+            not listed again.
         """
         using = [p for p in plans if p.technique == self.name]
+        kept = self._kept_for
+        if len(using) == len(kept) and all(p is k for p, k in zip(using, kept, strict=True)):
+            return
+        self._kept_for = tuple(using)
+        self._release_unused(using)
+
+    def _release_unused(self, using: list[Cast]) -> None:
+        """Release what none of ``using`` (volume casts) needs."""
         alive = {p.key for p in using}
         for key in set(self._lights) - alive:
             self._lights.pop(key).mask.release()
@@ -660,7 +672,8 @@ class VolumeTechnique:
 
     def release(self) -> None:
         """Release every framebuffer, mask, buffer and program."""
-        self.keep_only([])
+        self._kept_for = ()
+        self._release_unused([])
         self._fallbacks.release()
         self._passes.release()
 
