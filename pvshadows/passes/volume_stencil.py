@@ -287,25 +287,43 @@ class VolumePasses:
             first, second = (back, front) if mirrored else (front, back)
             state.vtkglStencilOpSeparate(gl.GL_FRONT, *first)
             state.vtkglStencilOpSeparate(gl.GL_BACK, *second)
-            for n in numbers:
-                matrix = matrices[16 * n : 16 * n + 16]
-                self._draw_volume(batch[n], matrix, lights[n], caps=zmode == "zfail")
+            self._draw_volumes(
+                [batch[n] for n in numbers], matrices, lights, numbers, zmode == "zfail"
+            )
 
-    def _draw_volume(
-        self, draw: VolumeDraw, matrix: np.ndarray, light: list[float], caps: bool
+    def _draw_volumes(
+        self,
+        draws: list[VolumeDraw],
+        matrices: np.ndarray,
+        lights: list[list[float]],
+        numbers: list[int],
+        caps: bool,
+        colour: list[float] | None = None,
     ) -> None:
-        """Draw one volume, given its model-to-clip matrix and light in float32."""
+        """Draw volumes, draw ``i`` with row ``numbers[i]`` of the float32 matrices and lights.
+
+        Each program is bound, and what it reads the same for every volume
+        (caps, ``colour``) set, once per run of volumes extruded alike.
+        """
         gl = self._gl
-        program = self._bind(draw.extrude)
-        program.SetUniformMatrix4x4v("modelToClip", 1, matrix)
-        if draw.extrude == "gpu":
-            program.SetUniform4f("lightModel", light)
-            program.SetUniformi("caps", int(caps))
-            program.SetUniformf("capDepthOffset", CAP_DEPTH_OFFSET)
-            program.SetUniformf("extrudeTo", float(draw.extrude_to))
-            for first, count, _ in draw.pieces:
-                draw.buffers.draw(program, gl.GL_TRIANGLES_ADJACENCY, first, count)
-        else:
+        bound = ""
+        program = None
+        for draw, n in zip(draws, numbers, strict=True):
+            if draw.extrude != bound or program is None:
+                bound = draw.extrude
+                program = self._bind(bound)
+                if colour is not None:
+                    program.SetUniform4f("colour", colour)
+                if bound == "gpu":
+                    program.SetUniformi("caps", int(caps))
+                    program.SetUniformf("capDepthOffset", CAP_DEPTH_OFFSET)
+            program.SetUniformMatrix4x4v("modelToClip", 1, matrices[16 * n : 16 * n + 16])
+            if bound == "gpu":
+                program.SetUniform4f("lightModel", lights[n])
+                program.SetUniformf("extrudeTo", float(draw.extrude_to))
+                for first, count, _ in draw.pieces:
+                    draw.buffers.draw(program, gl.GL_TRIANGLES_ADJACENCY, first, count)
+                continue
             for first, count, part in draw.pieces:
                 if part != "sides" and not caps:
                     continue
@@ -345,10 +363,8 @@ class VolumePasses:
             gl.glEnable(gl.GL_DEPTH_CLAMP)
             matrices = _float32_matrices(draws)
             lights = np.array([d.light_model for d in draws], np.float32).tolist()
-            for n, draw in enumerate(draws):
-                program = self._bind(draw.extrude)
-                program.SetUniform4f("colour", list(colour))
-                self._draw_volume(draw, matrices[16 * n : 16 * n + 16], lights[n], caps=False)
+            numbers = list(range(len(draws)))
+            self._draw_volumes(draws, matrices, lights, numbers, False, list(colour))
 
     def release(self) -> None:
         """Release the programs and the empty vertex array."""

@@ -113,7 +113,8 @@ class _Drawn:
     batches: list[list[tuple]]
     passing: list[float]
     draws: list[list[VolumeDraw]]
-    models: list[list[np.ndarray]]
+    #: Per batch, its draws' model matrices stacked ``(n, 4, 4)``.
+    models: list[np.ndarray]
 
     def seen_from(self, camera: np.ndarray) -> list[list[VolumeDraw]]:
         """Return the draws with each model matrix composed with ``camera``."""
@@ -122,13 +123,13 @@ class _Drawn:
                 VolumeDraw(
                     draw.buffers,
                     draw.extrude,
-                    camera @ model,
+                    to_clip,
                     draw.light_model,
                     draw.mirrored,
                     draw.pieces,
                     draw.extrude_to,
                 )
-                for draw, model in zip(batch, models, strict=True)
+                for draw, to_clip in zip(batch, camera @ models, strict=True)
             ]
             for batch, models in zip(self.draws, self.models, strict=True)
         ]
@@ -157,7 +158,7 @@ class VolumeTechnique:
         #: Per snapshot: every actor's part of a mask's key; and, per hidden-line
         #: removal too, the actors the depth pre-pass draws and their keys.
         self._actors_of: tuple = (None, ())
-        self._depth_of: tuple = (None, False, [], ())
+        self._depth_of: tuple = (None, False, [], (), np.zeros((0, 4, 4)))
         self._fallbacks = OpenCasterFallbacks(window)
         self._context: FrameContext | None = None
         #: The volume casts of the last :meth:`keep_only`.
@@ -247,7 +248,10 @@ class VolumeTechnique:
                 plan, closed, plan_batches, camera, light, zmode, extrude, reach
             )
             reports.extend(built)
-            models = [[closed[n][0].model_matrix() for n, _, _ in batch] for batch in plan_batches]
+            models = [
+                np.array([closed[n][0].model_matrix() for n, _, _ in batch]).reshape(-1, 4, 4)
+                for batch in plan_batches
+            ]
             state.drawn = _Drawn(plan, zmode, reach, plan_batches, passing, draws, models)
         bodies = [sum(e - s for _, s, e in batch) for batch in plan_batches]
         record = PassReport(
@@ -279,21 +283,27 @@ class VolumeTechnique:
             state.closed_key = (plan, tuple((*c.key(), c.transmittance) for c, _ in closed))
         return state.closed_key[1]
 
-    def _depth_actors(self, context: FrameContext) -> tuple[list[ActorState], tuple]:
-        """Return the actors that hide what is behind them, and their keys (per snapshot)."""
+    def _depth_actors(self, context: FrameContext) -> tuple[list[ActorState], tuple, np.ndarray]:
+        """Return the actors that hide what is behind them, their keys and model matrices.
+
+        Worked out once per snapshot and hidden-line removal; the matrices
+        stacked ``(n, 4, 4)``, so that a camera that moves multiplies them in one go.
+        """
         hidden = bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(context.renderer))
         kept = self._depth_of
         if kept[0] is not context.snapshot or kept[1] != hidden:
             actors = [
                 a for a in context.snapshot.actors if hides_what_is_behind(a, context.renderer)
             ]
+            models = np.array([a.model_matrix() for a in actors]).reshape(-1, 4, 4)
             kept = self._depth_of = (
                 context.snapshot,
                 hidden,
                 actors,
                 tuple(a.key() for a in actors),
+                models,
             )
-        return kept[2], kept[3]
+        return kept[2], kept[3], kept[4]
 
     def _ensure_target(self, width: int, height: int) -> None:
         if self._target is not None and self._target.size == (width, height):
@@ -310,15 +320,14 @@ class VolumeTechnique:
         self, context: FrameContext, camera: np.ndarray, width: int, height: int
     ) -> PassReport:
         self._depth_frame = context.frame
-        actors, keys = self._depth_actors(context)
+        actors, keys, models = self._depth_actors(context)
         key = (camera.tobytes(), (width, height), keys)
         if key == self._depth_key:
             return PassReport(
                 "volume depth pre-pass", "reused", "camera and actors unchanged: depth still right"
             )
-        draws = [
-            DepthDraw(context.buffers.get(actor), camera @ actor.model_matrix()) for actor in actors
-        ]
+        get = context.buffers.get
+        draws = [DepthDraw(get(a), m) for a, m in zip(actors, camera @ models, strict=True)]
         self._depth_key = key
         assert self._target is not None
         return self._passes.depth(self._target, draws, context.timer)
