@@ -208,12 +208,15 @@ def test_the_cold_cache_control_is_tabled_apart_from_the_actors_series(tmp_path)
         row(OverheadScene("actors", actors=1), 0.2),
         row(cold[0], 0.6),
         row(OverheadScene("actors", actors=100), 0.2),
+        row(OverheadScene("actors", actors=500, technique="volume"), 7.0),
     ]
     text = write_overhead(rows, tmp_path)
     line = next(x for x in text.splitlines() if x.startswith("| 1 caster after"))
     assert "| not timed |" in line  # its first frame is not measured: NaN is not printed
-    # The control is no size of the actors series: the fit over 1 and 100 casters is flat.
+    # Neither the control nor a row drawn by another technique is a size of the actors
+    # series: the fit over 1 and 100 casters is flat.
     assert "| actors | camera | 0.2 ms * actors^0.00 |" in text
+    assert "| 500 casters, spot, technique=volume | " in text
     with open(tmp_path / "overhead.csv", encoding="utf-8") as handle:
         records = {r["scene"]: r for r in csv.DictReader(handle)}
     assert records["1 caster after a 1000-caster frame, spot"]["cold_after"] == "1000"

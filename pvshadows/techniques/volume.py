@@ -163,10 +163,9 @@ class VolumeTechnique:
         self._context: FrameContext | None = None
         #: The volume casts of the last :meth:`keep_only`.
         self._kept_for: tuple[Cast, ...] = ()
-        #: Each light in each caster's model coordinates, and whether the caster's
-        #: matrix mirrors, by caster and light: this frame's, and last frame's.
-        self._in_model: dict[tuple[int, bytes], tuple[ActorState, np.ndarray, bool]] = {}
-        self._in_model_before: dict[tuple[int, bytes], tuple[ActorState, np.ndarray, bool]] = {}
+        #: The closed casters of the last volume draws built, with their model
+        #: matrices and the inverses stacked (:meth:`_stacked`).
+        self._stacks: tuple = ((), np.zeros((0, 4, 4)), np.zeros((0, 4, 4)))
 
     # -- per light ------------------------------------------------------------------------
 
@@ -354,9 +353,15 @@ class VolumeTechnique:
                 ranges_of.setdefault(number, []).append((first, end))
         per_caster: list[list[VolumeDraw]] = []
         rebuilt, reused, seconds = 0, 0, 0.0
+        models, inverses = self._stacked(closed)
+        # The light in every caster's model coordinates at once; a point's w made 1.
+        lights_model = inverses @ light
+        positional = lights_model[:, 3] != 0.0
+        lights_model[positional] /= lights_model[positional, 3:4]
+        to_clip = camera @ models
         for number, (caster, mesh) in enumerate(closed):
-            model = caster.model_matrix()
-            light_model, mirrored = self._light_in_model(caster, light)
+            model = models[number]
+            light_model, mirrored = lights_model[number], caster.mirrored
             # Model units that are at least `reach` world units in every direction.
             extrude_to = (
                 reach / np.linalg.svd(model[:3, :3], compute_uv=False)[-1] if reach else 0.0
@@ -371,7 +376,7 @@ class VolumeTechnique:
                         VolumeDraw(
                             buffers,
                             "gpu",
-                            camera @ model,
+                            to_clip[number],
                             light_model,
                             mirrored,
                             [span],
@@ -396,7 +401,7 @@ class VolumeTechnique:
                         pieces.append((3 * first, 3 * int(starts[e] - starts[s]), piece))
                     draws.append(
                         VolumeDraw(
-                            volume.buffers, "cpu", camera @ model, light_model, mirrored, pieces
+                            volume.buffers, "cpu", to_clip[number], light_model, mirrored, pieces
                         )
                     )
             per_caster.append(draws)
@@ -591,26 +596,29 @@ class VolumeTechnique:
             uniforms.update(self._fallbacks.technique(name).activate(subplan, context, entry))
         return uniforms
 
-    def _light_in_model(self, caster: ActorState, light: np.ndarray) -> tuple[np.ndarray, bool]:
-        """Return a light in a caster's model coordinates and whether its matrix mirrors.
+    def _stacked(
+        self, closed: list[tuple[ActorState, VolumeMesh]]
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Return the closed casters' model matrices and their inverses, ``(n, 4, 4)`` each.
 
-        Worked out again only for a caster state or a light not seen this
-        frame or the last: a camera that moves changes neither.
+        Stacked again only for other caster states than the last call's: a
+        light that moves over the same casters multiplies the same stacks.
         """
-        key = (id(caster), light.tobytes())
-        kept = self._in_model.get(key) or self._in_model_before.get(key)
-        if kept is None or kept[0] is not caster:
-            light_model = caster.model_inverse @ light
-            if light_model[3] != 0.0:
-                light_model = np.append(light_model[:3] / light_model[3], 1.0)
-            kept = (caster, light_model, caster.mirrored)
-        self._in_model[key] = kept
-        return kept[1], kept[2]
+        states = self._stacks[0]
+        if len(states) != len(closed) or any(
+            c is not kept for (c, _), kept in zip(closed, states, strict=True)
+        ):
+            casters = [c for c, _ in closed]
+            self._stacks = (
+                tuple(casters),
+                np.array([c.model_matrix() for c in casters]).reshape(-1, 4, 4),
+                np.array([c.model_inverse for c in casters]).reshape(-1, 4, 4),
+            )
+        return self._stacks[1], self._stacks[2]
 
     def end_frame(self) -> None:
         """End the frame of the open casters' fallback techniques."""
         self._fallbacks.end_frame()
-        self._in_model_before, self._in_model = self._in_model, {}
 
     def draw_debug(self, context: FrameContext) -> None:
         """Draw this frame's volumes translucent over the finished frame (``show_volumes``).
