@@ -234,11 +234,19 @@ def _maybe_touched(light: np.ndarray, region: np.ndarray, boxes: CasterBoxes) ->
         return list(range(len(boxes.names)))
     around = np.array([boxes.low.min(axis=0), boxes.high.max(axis=0)])
     hull = light_region(light, region, around)
-    slack = 1e-9 * max(float(np.abs(hull).max()), boxes.size, 1e-300)
-    apart = (hull.min(axis=0) > boxes.high + slack).any(axis=1) | (
-        hull.max(axis=0) < boxes.low - slack
-    ).any(axis=1)
-    return np.flatnonzero(~apart).tolist()
+    gaps, slack = _box_gaps(hull, boxes)
+    return np.flatnonzero(gaps <= slack).tolist()
+
+
+def _box_gaps(hull: np.ndarray, boxes: CasterBoxes) -> tuple[np.ndarray, float]:
+    """Return how far the box around ``hull`` lies from each caster's box, and the tests' slack.
+
+    A gap is the widest separation along any axis (negative where the
+    boxes overlap on every axis); a box more than the slack away cannot
+    meet the hull.
+    """
+    gaps = np.maximum(hull.min(axis=0) - boxes.high, boxes.low - hull.max(axis=0)).max(axis=1)
+    return gaps, 1e-9 * max(float(np.abs(hull).max()), boxes.size, 1e-300)
 
 
 def zpass_clearance(light: np.ndarray, region: np.ndarray | None, boxes: CasterBoxes) -> float:
@@ -283,8 +291,5 @@ def zpass_clearance(light: np.ndarray, region: np.ndarray | None, boxes: CasterB
         return 0.0
     if not boxes.names:
         return math.inf
-    hull = np.vstack([light[:3] / light[3], region])
-    low, high = hull.min(axis=0), hull.max(axis=0)
-    gaps = np.maximum(low - boxes.high, boxes.low - high).max(axis=1)
-    slack = 1e-9 * max(float(np.abs(hull).max()), boxes.size, 1e-300)
+    gaps, slack = _box_gaps(np.vstack([light[:3] / light[3], region]), boxes)
     return max(0.0, float(gaps.min()) - 4.0 * slack)

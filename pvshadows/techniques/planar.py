@@ -45,7 +45,13 @@ from pvshadows.scene.triangles import vtk_id
 from pvshadows.scene.view import FrameView
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, LightFrame
-from pvshadows.techniques.screen_mask import facing_shading, mask_shading, mask_uniforms
+from pvshadows.techniques.screen_mask import (
+    facing_shading,
+    held_for,
+    mask_holds,
+    mask_shading,
+    mask_uniforms,
+)
 
 _PASS = "planar mask"
 
@@ -307,8 +313,7 @@ class PlanarTechnique:
         reports = self._update(plan, context)
         state = self._lights.get(plan.key)
         if state is not None:
-            held = (plan, context.snapshot, context.view, context.viewport_size())
-            state.held = (*held, tuple(plan.notes[said:]))
+            state.held = (*held_for(plan, context), tuple(plan.notes[said:]))
         return reports
 
     def _update(self, plan: PlanarCast, context: FrameContext) -> list[PassReport]:
@@ -448,15 +453,9 @@ class PlanarTechnique:
         state = self._lights.get(plan.key)
         if not same_view or state is None or state.held is None:
             return None
-        cast, snapshot, view, size, notes = state.held
-        if (
-            cast is not plan
-            or snapshot is not context.snapshot
-            or view is not context.view
-            or size != context.viewport_size()
-        ):
+        if not mask_holds(state.held, plan, context):
             return None
-        plan.notes.extend(notes)
+        plan.notes.extend(state.held[4])
         if last.again:
             return last  # its reports as well: nothing in them changed
         passes = [_reused(state) if p.status == "run" else p for p in last.passes]

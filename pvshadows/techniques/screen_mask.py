@@ -4,7 +4,8 @@ Both techniques leave, per light, a mask the size of the viewport (1 where
 the light reaches the surface seen in the pixel, 0 where it is shadowed);
 a receiver reads it at its own pixel, times a facing test
 (``glsl/shadow_mask.glsl``). These functions give the shading and the
-uniforms of that lookup, so both techniques name them the same way.
+uniforms of that lookup, so both techniques name them the same way, and
+tell alike whether last frame's mask is this frame's (:func:`mask_holds`).
 """
 
 from __future__ import annotations
@@ -113,3 +114,52 @@ def mask_uniforms(
         return {}
     name = f"pvsMask{plan.vtk_index}"
     return {name: TextureBinding.of(name, mask.texture)}
+
+
+def held_for(plan: Cast, context: FrameContext) -> tuple:
+    """Return what a screen mask drawn now is right for: the cast, snapshot, view and target size.
+
+    Parameters
+    ----------
+    plan : Cast
+        The light's cast.
+    context : FrameContext
+        The frame the mask is drawn in.
+
+    Returns
+    -------
+    tuple
+        For :func:`mask_holds` (a technique may add what else its mask
+        depends on after these four).
+    """
+    return (plan, context.snapshot, context.view, context.viewport_size())
+
+
+def mask_holds(held: tuple, plan: Cast, context: FrameContext) -> bool:
+    """Tell whether a mask drawn for ``held`` (:func:`held_for`) is right in this frame.
+
+    A screen mask holds for the very cast it was drawn for, seen in the
+    same snapshot of the actors, from the same view, in a render target of
+    the same size.
+
+    Parameters
+    ----------
+    held : tuple
+        What the mask was drawn for; its first four values are compared.
+    plan : Cast
+        This frame's cast of the light.
+    context : FrameContext
+        This frame.
+
+    Returns
+    -------
+    bool
+        ``True`` when none of them changed.
+    """
+    cast, snapshot, view, size = held[:4]
+    return (
+        cast is plan
+        and snapshot is context.snapshot
+        and view is context.view
+        and size == context.viewport_size()
+    )

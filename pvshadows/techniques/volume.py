@@ -57,7 +57,7 @@ from pvshadows.scene.snapshot import Snapshot
 from pvshadows.scene.triangles import ActorTriangles, vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, LightFrame
-from pvshadows.techniques.screen_mask import mask_shading, mask_uniforms
+from pvshadows.techniques.screen_mask import held_for, mask_holds, mask_shading, mask_uniforms
 from pvshadows.techniques.volume_fallback import Fallback, OpenCasterFallbacks, combine_shadings
 from pvshadows.techniques.volume_light import (
     finite_reach,
@@ -203,7 +203,7 @@ class VolumeTechnique:
         closed, light, zmode, extrude = volume.closed, volume.light, volume.zmode, volume.extrude
         reports: list[PassReport] = []
         state.fallback = volume.fallback
-        state.held = (plan, context.snapshot, context.view, (width, height), hidden)
+        state.held = (*held_for(plan, context), hidden)
         if volume.enclosing is not None:
             key: tuple = ("inside", plan.pose.key(), volume.enclosing.key())
             if key != state.key:
@@ -549,14 +549,8 @@ class VolumeTechnique:
         state = self._lights.get(plan.key)
         if not same_view or state is None or state.fallback is not None or state.held is None:
             return None
-        cast, snapshot, view, size, hidden = state.held
-        if (
-            cast is not plan
-            or snapshot is not context.snapshot
-            or view is not context.view
-            or size != context.viewport_size()
-            or hidden != bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(context.renderer))
-        ):
+        hidden = bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(context.renderer))
+        if not mask_holds(state.held, plan, context) or state.held[4] != hidden:
             return None
         self._context = context
         if last.again:
