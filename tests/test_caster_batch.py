@@ -77,6 +77,8 @@ CASES = [
     ("directional", {}),
     ("spot", {"cull_front": True}),
     ("point", {"cull_front": True}),
+    ("spot", {"technique": "volume"}),  # the depth pre-pass draws the batch
+    ("point", {"technique": "volume"}),
 ]
 
 
@@ -104,6 +106,20 @@ def test_a_pass_submits_a_chunk_and_a_draw_per_side(monkeypatch):
     draw(plotter)
     (report,) = plotter.shadows.last_frame.lights[0].passes
     assert report.status == "run" and report.detail.startswith(f"{casters} of {casters}")
+    assert batch.calls - before == 2  # one chunk of matrices, one multi-draw
+
+
+def test_the_volume_depth_pre_pass_draws_every_actor_through_the_batch(monkeypatch):
+    plotter, _, _, keeper = _frames("spot", {"technique": "volume"}, 16, monkeypatch)
+    batch = keeper._kept[1]
+    actors = GRID * GRID + 2
+    assert len(batch) == actors
+    before = batch.calls
+    plotter.camera.azimuth = 5.0
+    draw(plotter)
+    reports = plotter.shadows.last_frame.lights[0].passes
+    (depth,) = [r for r in reports if r.name == "volume depth pre-pass"]
+    assert depth.status == "run" and depth.detail == f"{actors} actors"
     assert batch.calls - before == 2  # one chunk of matrices, one multi-draw
 
 

@@ -26,16 +26,24 @@ import numpy as np
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.transforms import column_major
 from pvshadows.gl.binding import opengl_for
-from pvshadows.gl.buffers import EmptyArray, IndexedBuffers, TriangleBuffers
+from pvshadows.gl.buffers import EmptyArray, IndexedBuffers
+from pvshadows.gl.caster_draws import CasterDraws, draw_casters
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
 from pvshadows.gl.programs import ProgramCache, ShaderCompileError, bind_program, compile_files
+from pvshadows.gl.raw_calls import raw_calls
 from pvshadows.gl.timing import PassTimer
 from pvshadows.model.report import PassReport
+from pvshadows.passes.gl_state import FaceCulling
 
 #: Clip-space depth offset (times w) of light caps: they lie on the lit
 #: surface they came from and must lose the depth test against it. About
 #: eight steps of a 24-bit depth buffer.
 CAP_DEPTH_OFFSET = 1.0e-6
+
+#: The uniforms the extruding program reads per volume besides its matrix.
+_GPU_UNIFORMS = ("lightModel", "extrudeTo")
+#: ``GL_UNSIGNED_INT``, ``GL_TRIANGLES`` and ``GL_TRIANGLES_ADJACENCY``.
+_UNSIGNED_INT, _TRIANGLES, _TRIANGLES_ADJACENCY = 0x1405, 0x0004, 0x000C
 
 #: The stage files of each program: the depth pre-pass, volumes extruded on the
 #: GPU (geometry shader) or built on the CPU, and the full-screen mask pass.
@@ -83,14 +91,6 @@ class VolumeDraw:
     extrude_to: float = 0.0
 
 
-@dataclass
-class DepthDraw:
-    """One actor in the depth pre-pass: its triangles and its model-to-clip matrix."""
-
-    buffers: TriangleBuffers
-    model_to_clip: np.ndarray
-
-
 class VolumePasses:
     """Runs the shadow-volume passes of one window.
 
@@ -109,9 +109,14 @@ class VolumePasses:
 
     # -- programs ---------------------------------------------------------------------------
 
-    def _program(self, name: str) -> vtk.vtkShaderProgram:
-        stages = _STAGES[name]
-        return self._programs.get(name, lambda: compile_files(self._window, *stages))
+    def _program(self, name: str, rows: int = 0) -> vtk.vtkShaderProgram:
+        """Return a program of :data:`_STAGES`, built ``BATCHED`` so many rows when ``rows``."""
+        vertex, fragment, *geometry = _STAGES[name]
+        defines = {"BATCHED": rows} if rows else None
+        return self._programs.get(
+            (name, rows),
+            lambda: compile_files(self._window, vertex, fragment, "".join(geometry), defines),
+        )
 
     def can_extrude_on_gpu(self) -> bool:
         """Return whether the extruding geometry shader compiles in this context.
@@ -131,8 +136,8 @@ class VolumePasses:
                 self._extrudes_on_gpu = True
         return self._extrudes_on_gpu
 
-    def _bind(self, name: str) -> vtk.vtkShaderProgram:
-        program = self._program(name)
+    def _bind(self, name: str, rows: int = 0) -> vtk.vtkShaderProgram:
+        program = self._program(name, rows)
         bind_program(self._window, program)
         return program
 
@@ -160,15 +165,16 @@ class VolumePasses:
 
     # -- passes -----------------------------------------------------------------------------
 
-    def depth(self, target: VolumeTarget, draws: list[DepthDraw], timer: PassTimer) -> PassReport:
+    def depth(self, target: VolumeTarget, draws: CasterDraws, timer: PassTimer) -> PassReport:
         """Fill the target's depth with every visible actor (and clear its stencil).
 
         Parameters
         ----------
         target : VolumeTarget
             The framebuffer.
-        draws : list of DepthDraw
-            The visible actors.
+        draws : CasterDraws
+            The visible actors, their matrices taking them to the camera's
+            clip space; the casters of the snapshot's batch are drawn through it.
         timer : PassTimer
             Records the pass's GPU time.
 
@@ -177,6 +183,11 @@ class VolumePasses:
         PassReport
             The pass.
         """
+
+        def program(batched: bool) -> vtk.vtkShaderProgram:
+            rows = draws.batch.chunk if batched and draws.batch is not None else 0
+            return self._bind("depth", rows)
+
         record = PassReport("volume depth pre-pass", "run", f"{len(draws)} actors")
         with timer.measure(record), self._state() as (gl, state):
             target.bind(None)
@@ -188,12 +199,7 @@ class VolumePasses:
             state.vtkglStencilMask(0xFF)
             gl.glClearStencil(0)
             state.vtkglClear(gl.GL_DEPTH_BUFFER_BIT | gl.GL_STENCIL_BUFFER_BIT)
-            program = self._bind("depth")
-            matrices = _float32_matrices(draws)
-            for number, draw in enumerate(draws):
-                matrix = matrices[16 * number : 16 * number + 16]
-                program.SetUniformMatrix4x4v("modelToClip", 1, matrix)
-                draw.buffers.draw_triangles(program)
+            draw_casters(program, draws, FaceCulling(self._window))
         return record
 
     def fill(self, target: VolumeTarget, mask: MaskTexture, value: float) -> None:
@@ -279,7 +285,7 @@ class VolumePasses:
             down = (gl.GL_KEEP, gl.GL_DECR_WRAP, gl.GL_KEEP)
         front, back = (up, down) if zmode == "zpass" else (down, up)
         matrices = _float32_matrices(batch)
-        lights = np.array([d.light_model for d in batch], np.float32).tolist()
+        lights = _float32_lights(batch)
         for mirrored in (False, True):
             numbers = [n for n, d in enumerate(batch) if d.mirrored == mirrored]
             if not numbers:
@@ -295,7 +301,7 @@ class VolumePasses:
         self,
         draws: list[VolumeDraw],
         matrices: np.ndarray,
-        lights: list[list[float]],
+        lights: np.ndarray,
         numbers: list[int],
         caps: bool,
         colour: list[float] | None = None,
@@ -303,11 +309,20 @@ class VolumePasses:
         """Draw volumes, draw ``i`` with row ``numbers[i]`` of the float32 matrices and lights.
 
         Each program is bound, and what it reads the same for every volume
-        (caps, ``colour``) set, once per run of volumes extruded alike.
+        (caps, ``colour``) set, once per run of volumes extruded alike. Each
+        volume's matrix and light are then set by location from those rows,
+        read in place by address, and its pieces drawn, with the plain GL
+        calls of :func:`~pvshadows.gl.raw_calls.raw_calls`: a few calls of
+        about a microsecond each per volume.
         """
-        gl = self._gl
+        assert matrices.dtype == np.float32 and matrices.flags.c_contiguous  # read by address
+        assert lights.dtype == np.float32 and lights.flags.c_contiguous
+        raw = raw_calls()
+        matrix_base, light_base = matrices.ctypes.data, lights.ctypes.data
         bound = ""
         program = None
+        to_clip = position = light_at = reach_at = -1
+        reach = None
         for draw, n in zip(draws, numbers, strict=True):
             if draw.extrude != bound or program is None:
                 bound = draw.extrude
@@ -317,18 +332,27 @@ class VolumePasses:
                 if bound == "gpu":
                     program.SetUniformi("caps", int(caps))
                     program.SetUniformf("capDepthOffset", CAP_DEPTH_OFFSET)
-            program.SetUniformMatrix4x4v("modelToClip", 1, matrices[16 * n : 16 * n + 16])
+                    light_at, reach_at = (program.FindUniform(name) for name in _GPU_UNIFORMS)
+                    reach = None
+                to_clip = program.FindUniform("modelToClip")
+                position = program.FindAttributeArray("position")
+            raw.matrix(to_clip, 1, 0, matrix_base + 64 * n)
+            raw.bind(draw.buffers.vertex_array(position))
             if bound == "gpu":
-                program.SetUniform4f("lightModel", lights[n])
-                program.SetUniformf("extrudeTo", float(draw.extrude_to))
+                raw.vector(light_at, 1, light_base + 16 * n)
+                if draw.extrude_to != reach:
+                    reach = draw.extrude_to
+                    raw.uniform_float(reach_at, reach)
                 for first, count, _ in draw.pieces:
-                    draw.buffers.draw(program, gl.GL_TRIANGLES_ADJACENCY, first, count)
+                    if count > 0:
+                        raw.draw(_TRIANGLES_ADJACENCY, count, _UNSIGNED_INT, 4 * first)
                 continue
             for first, count, part in draw.pieces:
-                if part != "sides" and not caps:
+                if count <= 0 or (part != "sides" and not caps):
                     continue
                 program.SetUniformf("capDepthOffset", CAP_DEPTH_OFFSET if part == "light" else 0.0)
-                draw.buffers.draw(program, gl.GL_TRIANGLES, first, count)
+                raw.draw(_TRIANGLES, count, _UNSIGNED_INT, 4 * first)
+        raw.bind(0)
 
     def overlay(
         self,
@@ -362,7 +386,7 @@ class VolumePasses:
             )
             gl.glEnable(gl.GL_DEPTH_CLAMP)
             matrices = _float32_matrices(draws)
-            lights = np.array([d.light_model for d in draws], np.float32).tolist()
+            lights = _float32_lights(draws)
             numbers = list(range(len(draws)))
             self._draw_volumes(draws, matrices, lights, numbers, False, list(colour))
 
@@ -372,6 +396,11 @@ class VolumePasses:
         if self._empty is not None:
             self._empty.release()
             self._empty = None
+
+
+def _float32_lights(draws: list[VolumeDraw]) -> np.ndarray:
+    """Return every draw's ``light_model`` as float32 rows, ``(n, 4)`` C-contiguous."""
+    return np.array([d.light_model for d in draws], np.float32).reshape(-1, 4)
 
 
 def _float32_matrices(draws: list) -> np.ndarray:

@@ -505,6 +505,36 @@ class Snapshot:
         rows = self._caster_rows
         return np.fromiter(map(rows.__getitem__, map(id, casters)), np.intp, len(casters))
 
+    def caster_rows_among(self, actors: list[ActorState]) -> np.ndarray:
+        """Return where each of some of this snapshot's actors sits in :attr:`casters`.
+
+        Parameters
+        ----------
+        actors : list of ActorState
+            Actors of this snapshot, casters or not.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``(n,)`` rows of :attr:`casters`, -1 for an actor that casts nothing.
+
+        Examples
+        --------
+        >>> import pyvista as pv
+        >>> from pvshadows.scene.reader import SceneReader
+        >>> from pvshadows.scene.triangles import vtk_id
+        >>> pl = pv.Plotter(off_screen=True)
+        >>> ground = pl.add_mesh(pv.Plane())
+        >>> _ = pl.add_mesh(pv.Sphere())
+        >>> reader = SceneReader(vtk_id)
+        >>> reader.set_casting(vtk_id(ground), False, None)
+        >>> snapshot = reader.read(pl.renderer)
+        >>> snapshot.caster_rows_among(snapshot.actors).tolist()
+        [-1, 0]
+        """
+        rows = self._caster_rows
+        return np.fromiter((rows.get(id(a), -1) for a in actors), np.intp, len(actors))
+
     def bounds_of(self, casters: list[ActorState]) -> np.ndarray:
         """Return the world bounds of some of this snapshot's casters, ``(n, 2, 3)``.
 

@@ -44,13 +44,16 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.silhouette import volume_geometry
+from pvshadows.geometry.transforms import column_major
 from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.gl.buffers import IndexedBuffers
+from pvshadows.gl.caster_batch import CasterBatch
+from pvshadows.gl.caster_draws import CasterDraws
 from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
 from pvshadows.model.plan import Cast, VolumeCast
 from pvshadows.model.report import PassReport
-from pvshadows.passes.volume_stencil import DepthDraw, VolumeDraw, VolumePasses
+from pvshadows.passes.volume_stencil import VolumeDraw, VolumePasses
 from pvshadows.scene.actor_state import ActorState, hides_what_is_behind
 from pvshadows.scene.render_target import tiled_viewport
 from pvshadows.scene.snapshot import Snapshot
@@ -135,6 +138,25 @@ class _Drawn:
         ]
 
 
+@dataclass(frozen=True)
+class _DepthActors:
+    """What the depth pre-pass draws of one snapshot: the actors that hide what is behind them.
+
+    ``models`` stacks their model matrices ``(n, 4, 4)``, so that a camera
+    that moves multiplies them in one go; ``rows`` holds each one's row in
+    ``batch`` (-1 for an actor drawn on its own), ``None`` without a batch.
+    """
+
+    snapshot: Snapshot | None
+    hidden: bool
+    batch: CasterBatch | None
+    keys: tuple
+    models: np.ndarray
+    buffers: list[IndexedBuffers]
+    culls: list[str | None]
+    rows: np.ndarray | None
+
+
 class VolumeTechnique:
     """Keeps the shadow masks of the lights that use volumes, and the casters' volume data.
 
@@ -158,7 +180,7 @@ class VolumeTechnique:
         #: Per snapshot: every actor's part of a mask's key; and, per hidden-line
         #: removal too, the actors the depth pre-pass draws and their keys.
         self._actors_of: tuple = (None, ())
-        self._depth_of: tuple = (None, False, [], (), np.zeros((0, 4, 4)))
+        self._depth_of = _DepthActors(None, False, None, (), np.zeros((0, 4, 4)), [], [], None)
         self._fallbacks = OpenCasterFallbacks(window)
         self._context: FrameContext | None = None
         #: The volume casts of the last :meth:`keep_only`.
@@ -282,27 +304,33 @@ class VolumeTechnique:
             state.closed_key = (plan, tuple((*c.key(), c.transmittance) for c, _ in closed))
         return state.closed_key[1]
 
-    def _depth_actors(self, context: FrameContext) -> tuple[list[ActorState], tuple, np.ndarray]:
-        """Return the actors that hide what is behind them, their keys and model matrices.
+    def _depth_actors(self, context: FrameContext) -> _DepthActors:
+        """Return what the depth pre-pass draws: the actors that hide what is behind them.
 
-        Worked out once per snapshot and hidden-line removal; the matrices
-        stacked ``(n, 4, 4)``, so that a camera that moves multiplies them in one go.
+        Worked out once per snapshot, hidden-line removal and batch of
+        small casters.
         """
+        snapshot, buffers = context.snapshot, context.buffers
         hidden = bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(context.renderer))
+        batch = buffers.batch_of(snapshot)
         kept = self._depth_of
-        if kept[0] is not context.snapshot or kept[1] != hidden:
-            actors = [
-                a for a in context.snapshot.actors if hides_what_is_behind(a, context.renderer)
-            ]
-            models = np.array([a.model_matrix() for a in actors]).reshape(-1, 4, 4)
-            kept = self._depth_of = (
-                context.snapshot,
+        if kept.snapshot is not snapshot or kept.hidden != hidden or kept.batch is not batch:
+            actors = [a for a in snapshot.actors if hides_what_is_behind(a, context.renderer)]
+            rows = None
+            if batch is not None:
+                among = snapshot.caster_rows_among(actors)
+                rows = np.where(among >= 0, batch.rows[among], -1)
+            kept = self._depth_of = _DepthActors(
+                snapshot,
                 hidden,
-                actors,
+                batch,
                 tuple(a.key() for a in actors),
-                models,
+                np.array([a.model_matrix() for a in actors]).reshape(-1, 4, 4),
+                [buffers.get(a) for a in actors],
+                [None] * len(actors),
+                rows,
             )
-        return kept[2], kept[3], kept[4]
+        return kept
 
     def _ensure_target(self, width: int, height: int) -> None:
         if self._target is not None and self._target.size == (width, height):
@@ -319,14 +347,14 @@ class VolumeTechnique:
         self, context: FrameContext, camera: np.ndarray, width: int, height: int
     ) -> PassReport:
         self._depth_frame = context.frame
-        actors, keys, models = self._depth_actors(context)
-        key = (camera.tobytes(), (width, height), keys)
+        depth = self._depth_actors(context)
+        key = (camera.tobytes(), (width, height), depth.keys)
         if key == self._depth_key:
             return PassReport(
                 "volume depth pre-pass", "reused", "camera and actors unchanged: depth still right"
             )
-        get = context.buffers.get
-        draws = [DepthDraw(get(a), m) for a, m in zip(actors, camera @ models, strict=True)]
+        columns = column_major(camera @ depth.models).reshape(-1, 4, 4)
+        draws = CasterDraws(depth.buffers, columns, depth.culls, depth.batch, depth.rows)
         self._depth_key = key
         assert self._target is not None
         return self._passes.depth(self._target, draws, context.timer)
