@@ -33,18 +33,32 @@ layout(triangle_strip, max_vertices = 18) out;
 in vec3 modelPosition[];
 flat in int vertexIndex[];
 
+#ifdef BATCHED
+// Many casters' volumes in one draw (pvshadows.gl.volume_batch): the pass sets
+// the uniforms of BATCHED rows from rowBase, and main() reads its caster's row
+// into the names the one-by-one draw sets as uniforms.
+flat in int vertexRow[];
+uniform mat4 modelToClips[BATCHED];
+uniform vec4 lightModels[BATCHED];
+uniform float extrudeTos[BATCHED];
+uniform int rowBase;
+mat4 modelToClip;
+vec4 lightModel;
+float extrudeTo;
+#else
 uniform mat4 modelToClip;
 // (x, y, z, 1): a point or spot light; (x, y, z, 0): direction towards a
 // directional light. Both in the caster's model frame.
 uniform vec4 lightModel;
-// 1: emit the light and dark caps (z-fail); 0: only the sides (z-pass).
-uniform int caps;
-// Clip-space depth offset (times w) of the light cap; see volume_homogeneous.vert.
-uniform float capDepthOffset;
 // 0: extrude to infinity (w = 0). Above 0: extrude this far (model units)
 // instead, beyond every receiver, for parallel projections, which cannot
 // draw points at infinity.
 uniform float extrudeTo;
+#endif
+// 1: emit the light and dark caps (z-fail); 0: only the sides (z-pass).
+uniform int caps;
+// Clip-space depth offset (times w) of the light cap; see volume_homogeneous.vert.
+uniform float capDepthOffset;
 
 bool pvsFacesLight(vec3 a, vec3 b, vec3 c, int ia, int ib, int ic)
 {
@@ -78,6 +92,12 @@ vec4 pvsAtInfinity(vec3 p)
 
 void main()
 {
+#ifdef BATCHED
+  int row = vertexRow[0] - rowBase;
+  modelToClip = modelToClips[row];
+  lightModel = lightModels[row];
+  extrudeTo = extrudeTos[row];
+#endif
   if (!pvsFacesLight(modelPosition[0], modelPosition[2], modelPosition[4],
                      vertexIndex[0], vertexIndex[2], vertexIndex[4]))
   {

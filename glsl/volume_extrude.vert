@@ -6,10 +6,19 @@
 in vec3 position;
 out vec3 modelPosition;
 flat out int vertexIndex;
+#ifdef BATCHED
+// Many casters' volumes in one draw (pvshadows.gl.volume_batch): each vertex
+// carries its caster's row, passed on for the geometry stage to read its uniforms.
+in int casterRow;
+flat out int vertexRow;
+#endif
 
 void main()
 {
   modelPosition = position;
   vertexIndex = gl_VertexID;
+#ifdef BATCHED
+  vertexRow = casterRow;
+#endif
   gl_Position = vec4(position, 1.0);
 }

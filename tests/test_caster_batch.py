@@ -15,6 +15,7 @@ import pytest
 import pyvista as pv
 
 import pvshadows.gl.caster_batch as caster_batch
+import pvshadows.gl.volume_batch as volume_batch
 from conftest import draw, point_light
 from pvshadows.geometry.transforms import translation
 from pvshadows.techniques.per_light import ADD_FROM, _ModelColumns
@@ -51,10 +52,13 @@ def _scene(kind):
     return plotter, light, meshes
 
 
-def _frames(kind, options, threshold, monkeypatch):
+def _frames(kind, options, threshold, monkeypatch, parallel=False):
     """Draw the scene's five frames; return the images and the renderer's batch keeper."""
     monkeypatch.setattr(caster_batch, "MIN_CASTERS", threshold)
+    monkeypatch.setattr(volume_batch, "MIN_VOLUMES", threshold)
     plotter, light, meshes = _scene(kind)
+    if parallel:
+        plotter.enable_parallel_projection()
     plotter.shadows.enable(lights=[light], **options)
     images = [draw(plotter)]
     x, y, z = light.GetPosition()
@@ -121,6 +125,45 @@ def test_the_volume_depth_pre_pass_draws_every_actor_through_the_batch(monkeypat
     (depth,) = [r for r in reports if r.name == "volume depth pre-pass"]
     assert depth.status == "run" and depth.detail == f"{actors} actors"
     assert batch.calls - before == 2  # one chunk of matrices, one multi-draw
+
+
+VOLUME_CASES = [
+    ("spot", "zpass", False),
+    ("point", "zfail", False),
+    ("directional", "zfail", False),
+    ("spot", "zfail", True),  # parallel projection: volumes of finite reach
+]
+
+
+@pytest.mark.parametrize(("kind", "zmode", "parallel"), VOLUME_CASES)
+@pytest.mark.parametrize("chunk", [256, 8])
+def test_batched_volumes_count_the_same_shadows_as_one_by_one(
+    kind, zmode, parallel, chunk, monkeypatch
+):
+    options = {"technique": "volume", "zmode": zmode}
+    _, _, alone, _ = _frames(kind, options, 10**9, monkeypatch, parallel)
+    monkeypatch.setattr(volume_batch, "MAX_CHUNK", chunk)
+    plotter, light, batched, _ = _frames(kind, options, 16, monkeypatch, parallel)
+    (state,) = plotter.shadows._renderers[0].technique("volume")._lights.values()
+    assert state.batch is not None and state.batch.in_batch.sum() >= 16
+    assert state.batch.chunk == min(chunk, volume_batch.volume_chunk_rows(plotter.ren_win))
+    for frame, (one, other) in enumerate(zip(alone, batched, strict=True)):
+        assert np.array_equal(one, other), f"frame {frame}: {(one != other).any(-1).sum()} px"
+    assert all(not np.array_equal(a, b) for a, b in itertools.pairwise(batched))
+    assert plotter.shadows.measure(light).misclassified <= 0.005
+
+
+def test_a_volume_count_submits_one_multi_draw_per_chunk_of_rows(monkeypatch):
+    monkeypatch.setattr(volume_batch, "MAX_CHUNK", 8)
+    plotter, _, _, _ = _frames("spot", {"technique": "volume"}, 16, monkeypatch)
+    (state,) = plotter.shadows._renderers[0].technique("volume")._lights.values()
+    batch = state.batch
+    rows = len(batch.in_batch)
+    before = batch.calls
+    plotter.camera.azimuth = 5.0
+    draw(plotter)
+    assert batch.calls - before == -(-rows // 8)  # the batch holds every closed caster
+    assert state.batch is batch  # the camera moved: the same batch
 
 
 @pytest.mark.parametrize("kind", ["spot", "point"])

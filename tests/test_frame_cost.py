@@ -1213,3 +1213,36 @@ def test_a_still_volume_frame_names_no_caster_however_many_there_are(monkeypatch
     light.intensity = 0.0  # the light casts nothing now: its mask goes
     draw(pl)
     assert pl.shadows._renderers[0].technique("volume").mask_of(light) is None
+
+
+@pytest.mark.parametrize("extrude", ["gpu", "cpu"])
+def test_a_moving_volume_light_keeps_its_casters_split_and_its_draws(extrude, monkeypatch):
+    from pvshadows.techniques import volume as volume_module
+
+    pl, light, _ = crowd_scene(60, window_size=(200, 150))
+    pl.shadows.enable(technique="volume", extrude=extrude)
+    draw(pl)
+    shadows = pl.shadows._renderers[0]
+    technique = shadows.technique("volume")
+    (state,) = technique._lights.values()
+    drawn, splits = state.drawn, shadows.memo.splits
+    named = []
+    real = volume_module.vtk_id
+    monkeypatch.setattr(volume_module, "vtk_id", lambda obj: named.append(obj) or real(obj))
+    x, y, z = light.position
+    for step in range(4):  # a new cast each frame over the same casters
+        light.position = (x + 0.02 * (step + 1), y - 0.01 * step, z)
+        pl.camera.Azimuth(1.0)
+        draw(pl)
+        assert "run" in [p.status for p in pl.shadows.last_frame.lights[0].passes]
+    assert shadows.memo.splits == splits  # the casters were sorted once
+    if extrude == "gpu":  # the same draws: no caster named
+        assert state.drawn is drawn and named == []
+    else:  # volumes built on the CPU follow the light
+        assert state.drawn is not drawn
+    assert pl.shadows.measure(light).misclassified <= MASK_BOUNDS["volume"]
+    shadows.plans[0].cast.casters[0].actor.AddPosition(0.05, 0.0, 0.0)  # sorted again
+    draw(pl)
+    assert shadows.memo.splits == splits + 1
+    assert state.drawn is not drawn
+    assert pl.shadows.measure(light).misclassified <= MASK_BOUNDS["volume"]

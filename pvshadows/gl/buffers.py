@@ -58,6 +58,36 @@ class IndexedBuffers:
         if rows is not None:
             self._fill(self._rows, np.ascontiguousarray(rows, dtype=np.int32))
 
+    @classmethod
+    def of_parts(
+        cls,
+        window: vtk.vtkOpenGLRenderWindow,
+        vertices: list[np.ndarray],
+        indices: list[np.ndarray],
+        rows: np.ndarray,
+    ) -> IndexedBuffers:
+        """Return the buffers of many meshes, their vertices and indices one after another.
+
+        Parameters
+        ----------
+        window : vtk.vtkOpenGLRenderWindow
+            The window whose context owns the buffers.
+        vertices : list of numpy.ndarray
+            Each mesh's ``(n_i, 3)`` positions.
+        indices : list of numpy.ndarray
+            Each mesh's flat indices, already moved past the meshes before it.
+        rows : numpy.ndarray
+            An integer per vertex of all of them (see the constructor).
+
+        Returns
+        -------
+        IndexedBuffers
+            Empty buffers for no mesh.
+        """
+        stacked = np.concatenate(vertices) if vertices else np.zeros((0, 3))
+        index = np.concatenate(indices) if indices else np.zeros(0, dtype=np.uint32)
+        return cls(window, stacked, index, rows)
+
     def _fill(self, buffer: int, data: np.ndarray, start: int | None = None) -> None:
         """Fill a buffer with ``data``, or write ``data`` from byte ``start`` on.
 

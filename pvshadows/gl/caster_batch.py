@@ -137,12 +137,7 @@ class CasterBatch:
             t.triangles.ravel() + first for t, first in zip(self._triangles, starts, strict=True)
         ]
         owners = np.repeat(np.arange(len(self._triangles), dtype=np.int32), vertex_counts)
-        self._buffers = IndexedBuffers(
-            window,
-            _stacked(points, np.float32, (0, 3)),
-            _stacked(indices, np.uint32, (0,)),
-            owners,
-        )
+        self._buffers = IndexedBuffers.of_parts(window, points, indices, owners)
 
     def __len__(self) -> int:
         return len(self._triangles)
@@ -264,10 +259,6 @@ class CasterBatch:
     def release(self) -> None:
         """Delete the buffers and vertex arrays (the context must be current)."""
         self._buffers.release()
-
-
-def _stacked(parts: list[np.ndarray], dtype: type, empty: tuple[int, ...]) -> np.ndarray:
-    return np.concatenate(parts).astype(dtype) if parts else np.zeros(empty, dtype=dtype)
 
 
 class BatchKeeper:

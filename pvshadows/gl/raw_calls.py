@@ -45,7 +45,8 @@ def raw_calls() -> SimpleNamespace:
         ``matrix`` (``glUniformMatrix4fv``), ``bind`` (``glBindVertexArray``),
         ``draw`` (``glDrawElements``), ``multi_draw``
         (``glMultiDrawElements``), ``uniform_int`` (``glUniform1i``),
-        ``uniform_float`` (``glUniform1f``), ``vector`` (``glUniform4fv``), ``query_counter``
+        ``uniform_float`` (``glUniform1f``), ``vector`` (``glUniform4fv``),
+        ``floats`` (``glUniform1fv``), ``query_counter``
         (``glQueryCounter``), ``query_result`` (``glGetQueryObjectui64v``), and
         ``bind_buffer_base`` (``glBindBufferBase``) and ``buffer_data``
         (``glBufferData``) for the frame's uniform block.
@@ -71,6 +72,7 @@ def raw_calls() -> SimpleNamespace:
         uniform_int=_bound("glUniform1i", _int, _int),
         uniform_float=_bound("glUniform1f", _int, ctypes.c_float),
         vector=_bound("glUniform4fv", _int, _int, ctypes.c_void_p),
+        floats=_bound("glUniform1fv", _int, _int, ctypes.c_void_p),
         query_counter=_bound("glQueryCounter", _uint, _uint),
         query_result=_bound("glGetQueryObjectui64v", _uint, _uint, _uint64_p),
         bind_buffer_base=_bound("glBindBufferBase", _uint, _uint, _uint),

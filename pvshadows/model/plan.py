@@ -48,6 +48,9 @@ class VolumePlan:
     ----------
     closed : list of (ActorState, VolumeMesh)
         The casters that cast volumes, with their closed meshes.
+    caster_boxes : CasterBoxes
+        Their names and world bounds, stacked once for every test of them
+        (the same object while the casters are).
     light : numpy.ndarray
         The light the volumes are cast from, ``(position, 1)`` or
         ``(direction towards it, 0)``, moved a hair off any face it lies in.
@@ -66,17 +69,13 @@ class VolumePlan:
     """
 
     closed: list[tuple[ActorState, VolumeMesh]]
+    caster_boxes: CasterBoxes
     light: np.ndarray
     enclosing: ActorState | None = None
     zmode: str = ""
     extrude: str = "gpu"
     fallback: tuple[str, Cast] | None = None
     zmode_reason: str = ""
-
-    @cached
-    def caster_boxes(self) -> CasterBoxes:
-        """The closed casters' names and world bounds, stacked once for each z-mode test."""
-        return CasterBoxes.of([(caster.name, caster.bounds) for caster, _ in self.closed])
 
 
 @dataclass

@@ -32,6 +32,7 @@ from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
 from pvshadows.gl.programs import ProgramCache, ShaderCompileError, bind_program, compile_files
 from pvshadows.gl.raw_calls import raw_calls
 from pvshadows.gl.timing import PassTimer
+from pvshadows.gl.volume_batch import VolumeBatch, VolumeRun
 from pvshadows.model.report import PassReport
 from pvshadows.passes.gl_state import FaceCulling
 
@@ -42,6 +43,8 @@ CAP_DEPTH_OFFSET = 1.0e-6
 
 #: The uniforms the extruding program reads per volume besides its matrix.
 _GPU_UNIFORMS = ("lightModel", "extrudeTo")
+#: The uniform arrays (and row base) the extruding program built ``BATCHED`` reads.
+_BATCH_UNIFORMS = ("modelToClips", "lightModels", "extrudeTos", "rowBase")
 #: ``GL_UNSIGNED_INT``, ``GL_TRIANGLES`` and ``GL_TRIANGLES_ADJACENCY``.
 _UNSIGNED_INT, _TRIANGLES, _TRIANGLES_ADJACENCY = 0x1405, 0x0004, 0x000C
 
@@ -59,6 +62,10 @@ _STAGES: dict[str, tuple[str, str] | tuple[str, str, str]] = {
 class VolumeDraw:
     """One caster's volume (or part of it) as the stencil pass draws it.
 
+    What the camera and the light change, its matrix and the light in its
+    frame, it reads from row :attr:`row` of the :class:`VolumeRows` the
+    pass is given: a draw holds while only they change.
+
     Attributes
     ----------
     buffers : IndexedBuffers
@@ -66,10 +73,8 @@ class VolumeDraw:
     extrude : {"gpu", "cpu"}
         ``"gpu"``: ``GL_TRIANGLES_ADJACENCY`` through the extruding geometry
         shader; ``"cpu"``: ready-made homogeneous triangles.
-    model_to_clip : numpy.ndarray
-        ``(4, 4)`` float64 from the buffers' frame to clip space.
-    light_model : numpy.ndarray
-        ``(4,)`` the light in the buffers' frame (used by ``"gpu"``).
+    row : int
+        Its caster's row of :class:`VolumeRows`.
     mirrored : bool
         The model matrix flips handedness: front and back swap on screen.
     pieces : list of tuple
@@ -84,11 +89,92 @@ class VolumeDraw:
 
     buffers: IndexedBuffers
     extrude: str
-    model_to_clip: np.ndarray
-    light_model: np.ndarray
+    row: int
     mirrored: bool
     pieces: list[tuple[int, int, str]] = field(default_factory=list)
     extrude_to: float = 0.0
+
+
+@dataclass(frozen=True)
+class VolumeRows:
+    """What the volumes of one count read per caster, stacked: one product each per frame.
+
+    Attributes
+    ----------
+    to_clip : numpy.ndarray
+        ``(n, 4, 4)`` float64, each caster's buffers' frame to clip space.
+    lights : numpy.ndarray
+        ``(n, 4)`` the light in each caster's buffers' frame (read by ``"gpu"``).
+    """
+
+    to_clip: np.ndarray
+    lights: np.ndarray
+    reaches: np.ndarray
+
+    def float32(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Return the matrices in OpenGL's column order, the lights and reaches, float32.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            C-contiguous: flat, row ``n``'s matrix at ``[16 n, 16 n + 16)``;
+            ``(n, 4)``; and ``(n,)``.
+        """
+        lights = np.ascontiguousarray(self.lights, dtype=np.float32).reshape(-1, 4)
+        reaches = np.ascontiguousarray(self.reaches, dtype=np.float32).ravel()
+        return column_major(self.to_clip.reshape(-1, 4, 4)), lights, reaches
+
+
+@dataclass(frozen=True)
+class StencilSide:
+    """The volumes of one count batch drawn with one winding on screen.
+
+    Attributes
+    ----------
+    mirrored : bool
+        Their model matrices flip handedness: front and back swap.
+    alone : list of VolumeDraw
+        Those drawn one by one.
+    runs : list of VolumeRun
+        Those drawn through the light's :class:`~pvshadows.gl.volume_batch.VolumeBatch`.
+    """
+
+    mirrored: bool
+    alone: list[VolumeDraw]
+    runs: list[VolumeRun]
+
+
+def stencil_sides(draws: list[VolumeDraw], batch: VolumeBatch | None) -> list[StencilSide]:
+    """Sort a count batch's draws by winding, and into the volume batch's runs or alone.
+
+    Parameters
+    ----------
+    draws : list of VolumeDraw
+        Volumes counted together.
+    batch : VolumeBatch or None
+        The light's batch of small volumes extruded on the GPU, if any.
+
+    Returns
+    -------
+    list of StencilSide
+        The unmirrored volumes first; a winding without volumes is left out.
+    """
+    sides = []
+    for mirrored in (False, True):
+        mine = [d for d in draws if d.mirrored == mirrored]
+        if not mine:
+            continue
+        batched = [
+            batch is not None and d.extrude == "gpu" and bool(batch.in_batch[d.row]) for d in mine
+        ]
+        alone = [d for d, b in zip(mine, batched, strict=True) if not b]
+        runs: list[VolumeRun] = []
+        if batch is not None and any(batched):
+            drawn = [(d.row, (first, count)) for d, b in zip(mine, batched, strict=True) if b
+                     for first, count, _ in d.pieces]  # fmt: skip
+            runs = batch.runs([row for row, _ in drawn], [span for _, span in drawn])
+        sides.append(StencilSide(mirrored, alone, runs))
+    return sides
 
 
 class VolumePasses:
@@ -224,9 +310,11 @@ class VolumePasses:
         self,
         target: VolumeTarget,
         mask: MaskTexture,
-        batches: list[list[VolumeDraw]],
+        batches: list[list[StencilSide]],
+        rows: VolumeRows,
         zmode: str,
         passing: list[float] | None = None,
+        batch: VolumeBatch | None = None,
     ) -> None:
         """Count the volumes in the stencil, batch by batch, and leave the mask.
 
@@ -236,27 +324,33 @@ class VolumePasses:
             The framebuffer, its depth filled by :meth:`depth`.
         mask : MaskTexture
             The light's mask, written: 1 lit, 0 in shadow.
-        batches : list of list of VolumeDraw
-            Volumes counted together (at most 255 bodies per batch).
+        batches : list of list of StencilSide
+            Volumes counted together (at most 255 bodies per batch), by
+            winding (:func:`stencil_sides`).
+        rows : VolumeRows
+            The matrices and lights the draws read.
         zmode : {"zpass", "zfail"}
             Counting in front of the surface or behind it.
         passing : list of float, optional
             Per batch, the share of light its shadow lets through (the mask is
             multiplied by it where the batch's count is not zero); all 0
             (opaque) by default.
+        batch : VolumeBatch, optional
+            The light's batch of small volumes, which the sides' runs draw.
         """
         passing = [0.0] * len(batches) if passing is None else passing
+        arrays = rows.float32()
         with self._state() as (gl, state):
             target.bind(mask)
             state.vtkglColorMask(True, True, True, True)
             state.vtkglClearColor(1.0, 1.0, 1.0, 1.0)
             state.vtkglClear(gl.GL_COLOR_BUFFER_BIT)
             state.vtkglEnable(gl.GL_STENCIL_TEST)
-            for batch, through in zip(batches, passing, strict=True):
+            for sides, through in zip(batches, passing, strict=True):
                 state.vtkglStencilMask(0xFF)
                 gl.glClearStencil(0)
                 state.vtkglClear(gl.GL_STENCIL_BUFFER_BIT)
-                self._count_batch(gl, state, batch, zmode)
+                self._count_batch(gl, state, sides, arrays, zmode, batch)
                 # Mask: times what the batch lets through (0 when opaque) where it counted.
                 gl.glDisable(gl.GL_DEPTH_CLAMP)
                 state.vtkglDisable(gl.GL_DEPTH_TEST)
@@ -270,7 +364,15 @@ class VolumePasses:
                 self._empty_array().draw_triangle()
                 state.vtkglDisable(gl.GL_BLEND)
 
-    def _count_batch(self, gl, state, batch: list[VolumeDraw], zmode: str) -> None:
+    def _count_batch(
+        self,
+        gl,
+        state,
+        sides: list[StencilSide],
+        arrays: tuple[np.ndarray, np.ndarray, np.ndarray],
+        zmode: str,
+        batch: VolumeBatch | None,
+    ) -> None:
         state.vtkglEnable(gl.GL_DEPTH_TEST)
         state.vtkglDepthFunc(gl.GL_LESS)
         state.vtkglDepthMask(False)
@@ -284,36 +386,66 @@ class VolumePasses:
             up = (gl.GL_KEEP, gl.GL_INCR_WRAP, gl.GL_KEEP)
             down = (gl.GL_KEEP, gl.GL_DECR_WRAP, gl.GL_KEEP)
         front, back = (up, down) if zmode == "zpass" else (down, up)
-        matrices = _float32_matrices(batch)
-        lights = _float32_lights(batch)
-        for mirrored in (False, True):
-            numbers = [n for n, d in enumerate(batch) if d.mirrored == mirrored]
-            if not numbers:
-                continue
-            first, second = (back, front) if mirrored else (front, back)
+        matrices, lights, _ = arrays
+        for side in sides:
+            first, second = (back, front) if side.mirrored else (front, back)
             state.vtkglStencilOpSeparate(gl.GL_FRONT, *first)
             state.vtkglStencilOpSeparate(gl.GL_BACK, *second)
-            self._draw_volumes(
-                [batch[n] for n in numbers], matrices, lights, numbers, zmode == "zfail"
+            if side.alone:
+                self._draw_volumes(side.alone, matrices, lights, zmode == "zfail")
+            if side.runs:
+                assert batch is not None  # the runs are the batch's
+                self._draw_runs(batch, side.runs, arrays, zmode == "zfail")
+
+    def _draw_runs(
+        self,
+        batch: VolumeBatch,
+        runs: list[VolumeRun],
+        arrays: tuple[np.ndarray, np.ndarray, np.ndarray],
+        caps: bool,
+    ) -> None:
+        """Draw runs of the batch's volumes: per chunk of rows, its uniforms and one multi-draw."""
+        matrices, lights, reaches = arrays
+        raw = raw_calls()
+        program = self._bind("gpu", batch.chunk)
+        program.SetUniformi("caps", int(caps))
+        program.SetUniformf("capDepthOffset", CAP_DEPTH_OFFSET)
+        to_clip, light_at, reach_at, base_at = (program.FindUniform(n) for n in _BATCH_UNIFORMS)
+        position, row = (program.FindAttributeArray(n) for n in ("position", "casterRow"))
+        raw.bind(batch.buffers.vertex_array(position, row))
+        for run in runs:
+            base, size = run.base, run.size
+            raw.matrix(to_clip, size, 0, matrices.ctypes.data + 64 * base)
+            raw.vector(light_at, size, lights.ctypes.data + 16 * base)
+            raw.floats(reach_at, size, reaches.ctypes.data + 4 * base)
+            raw.uniform_int(base_at, base)
+            raw.multi_draw(
+                _TRIANGLES_ADJACENCY,
+                run.counts.ctypes.data,
+                _UNSIGNED_INT,
+                run.offsets.ctypes.data,
+                len(run.counts),
             )
+            batch.calls += 1
+        raw.bind(0)
 
     def _draw_volumes(
         self,
         draws: list[VolumeDraw],
         matrices: np.ndarray,
         lights: np.ndarray,
-        numbers: list[int],
         caps: bool,
         colour: list[float] | None = None,
     ) -> None:
-        """Draw volumes, draw ``i`` with row ``numbers[i]`` of the float32 matrices and lights.
+        """Draw volumes, each with its row of the float32 matrices and lights.
 
         Each program is bound, and what it reads the same for every volume
         (caps, ``colour``) set, once per run of volumes extruded alike. Each
-        volume's matrix and light are then set by location from those rows,
-        read in place by address, and its pieces drawn, with the plain GL
-        calls of :func:`~pvshadows.gl.raw_calls.raw_calls`: a few calls of
-        about a microsecond each per volume.
+        volume's matrix and light are then set by location from its rows
+        (:meth:`VolumeRows.float32`, read in place by address) and its
+        pieces drawn, with the plain GL calls of
+        :func:`~pvshadows.gl.raw_calls.raw_calls`: a few calls of about a
+        microsecond each per volume.
         """
         assert matrices.dtype == np.float32 and matrices.flags.c_contiguous  # read by address
         assert lights.dtype == np.float32 and lights.flags.c_contiguous
@@ -323,7 +455,8 @@ class VolumePasses:
         program = None
         to_clip = position = light_at = reach_at = -1
         reach = None
-        for draw, n in zip(draws, numbers, strict=True):
+        for draw in draws:
+            n = draw.row
             if draw.extrude != bound or program is None:
                 bound = draw.extrude
                 program = self._bind(bound)
@@ -357,6 +490,7 @@ class VolumePasses:
     def overlay(
         self,
         draws: list[VolumeDraw],
+        rows: VolumeRows,
         viewport: tuple[int, int, int, int],
         colour: tuple[float, float, float, float],
     ) -> None:
@@ -369,6 +503,8 @@ class VolumePasses:
         ----------
         draws : list of VolumeDraw
             The volumes.
+        rows : VolumeRows
+            The matrices and lights they read.
         viewport : tuple of int
             The renderer's ``x, y, width, height`` in the window.
         colour : tuple of float
@@ -385,10 +521,8 @@ class VolumePasses:
                 gl.GL_SRC_ALPHA, gl.GL_ONE_MINUS_SRC_ALPHA, gl.GL_ZERO, gl.GL_ONE
             )
             gl.glEnable(gl.GL_DEPTH_CLAMP)
-            matrices = _float32_matrices(draws)
-            lights = _float32_lights(draws)
-            numbers = list(range(len(draws)))
-            self._draw_volumes(draws, matrices, lights, numbers, False, list(colour))
+            matrices, lights, _ = rows.float32()
+            self._draw_volumes(draws, matrices, lights, False, list(colour))
 
     def release(self) -> None:
         """Release the programs and the empty vertex array."""
@@ -396,16 +530,3 @@ class VolumePasses:
         if self._empty is not None:
             self._empty.release()
             self._empty = None
-
-
-def _float32_lights(draws: list[VolumeDraw]) -> np.ndarray:
-    """Return every draw's ``light_model`` as float32 rows, ``(n, 4)`` C-contiguous."""
-    return np.array([d.light_model for d in draws], np.float32).reshape(-1, 4)
-
-
-def _float32_matrices(draws: list) -> np.ndarray:
-    """Return every draw's ``model_to_clip`` in OpenGL's column order, rounded to float32 at once.
-
-    Draw ``n``'s matrix is ``[16 n, 16 n + 16)`` of the result.
-    """
-    return column_major(np.array([d.model_to_clip for d in draws]).reshape(-1, 4, 4))

@@ -22,7 +22,12 @@ from pvshadows.model.settings import ShadowSettings
 from pvshadows.pipeline.far_lights import fitted_to_casters
 from pvshadows.pipeline.reach import ReachCache, same_objects
 from pvshadows.pipeline.sight import ViewSight
-from pvshadows.pipeline.volume_plan import ZpassRoom, choose_volume_zmode
+from pvshadows.pipeline.volume_plan import (
+    ClosedSplit,
+    ZpassRoom,
+    choose_volume_zmode,
+    split_casters,
+)
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.lights import LightPose, light_pose, renderer_lights
 from pvshadows.scene.planes import PlaneChoice, choose_plane
@@ -105,6 +110,11 @@ class PlanMemo:
         #: What each volume light last chose its z-mode for: the volume plan, view
         #: and hidden-line removal, and the room its z-pass had (:class:`ZpassRoom`).
         self._zmodes: dict[int, tuple[VolumePlan, FrameView, bool, ZpassRoom | None]] = {}
+        #: Each volume light's last split of its casters: the casters and ``on_open``
+        #: it was made for, the split, and the notes it made.
+        self._splits: dict[int, tuple[list[ActorState], str, ClosedSplit, list[str]]] = {}
+        #: Casters sorted into closed and open ones (:meth:`split_closed`) since made.
+        self.splits = 0
 
     def plane(self, receivers: list[ActorState]) -> PlaneChoice:
         """Return the receiving plane of planar lights, chosen again only for other receivers.
@@ -353,6 +363,45 @@ class PlanMemo:
             del self._poses[key]
         for key in set(self._zmodes) - alive:
             del self._zmodes[key]
+        for key in set(self._splits) - alive:
+            del self._splits[key]
+
+    def split_closed(self, cast: Cast) -> ClosedSplit:
+        """Sort a volume light's casters into closed and open ones, again only for other casters.
+
+        A light whose casters are the very casters of its last split, in
+        the same order (the same snapshot's, or the same reach of a spot
+        light: it moved, or only the camera did), gets the very split back
+        (:func:`~pvshadows.pipeline.volume_plan.split_casters`), and the
+        notes it made are said again; the volume technique then keeps its
+        draws while only the light or the camera moves.
+
+        Parameters
+        ----------
+        cast : Cast
+            The light's cast, technique ``"volume"``.
+
+        Returns
+        -------
+        ClosedSplit
+            The closed casters with their meshes, the open ones, and the
+            closed ones' boxes.
+
+        Raises
+        ------
+        OpenMeshError
+            With ``on_open="raise"``, naming the first open caster.
+        """
+        on_open = cast.settings.on_open
+        kept = self._splits.get(id(cast.light))
+        if kept is not None and kept[1] == on_open and same_objects(kept[0], cast.casters):
+            cast.notes.extend(kept[3])
+            return kept[2]
+        said = len(cast.notes)
+        split = split_casters(cast)
+        self.splits += 1
+        self._splits[id(cast.light)] = (cast.casters, on_open, split, cast.notes[said:])
+        return split
 
     def choose_zmode(
         self,

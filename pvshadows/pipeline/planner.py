@@ -290,10 +290,11 @@ def _plan_light(
         light, index, plan.vtk_index, plan.kind, settings, technique, pose, within, plan.notes
     )
     if technique == "volume":
-        choose = partial(
-            shared.memo.choose_zmode, renderer=renderer, view=shared.view, warned=warned
+        memo = shared.memo
+        choose = partial(memo.choose_zmode, renderer=renderer, view=shared.view, warned=warned)
+        volume = plan_volume(
+            cast, renderer, snapshot, warned, extrude_on_gpu, choose, memo.split_closed
         )
-        volume = plan_volume(cast, renderer, snapshot, warned, extrude_on_gpu, choose)
         cast = _volume_cast(cast, volume)
     elif technique == "planar":
         cast = _planar_cast(cast, shared.plane)

@@ -16,10 +16,13 @@ from __future__ import annotations
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows.geometry.boxes import CasterBoxes
+from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.model.plan import FALLBACK_TECHNIQUES, SERVES, Cast, VolumePlan
 from pvshadows.pipeline.cube_passes import cube_passes
 from pvshadows.pipeline.volume_zmode import OUTSIDE, choose_zmode, zpass_clearance
@@ -36,6 +39,42 @@ from pvshadows.techniques.volume_light import (
 from pvshadows.techniques.volume_meshes import HOW_COUNTED, open_reason, split_closed
 
 
+class ClosedSplit(NamedTuple):
+    """A volume light's casters sorted into closed and open ones (:func:`split_casters`)."""
+
+    closed: list[tuple[ActorState, VolumeMesh]]
+    open_casters: list[ActorState]
+    #: The closed casters' boxes, stacked.
+    boxes: CasterBoxes
+
+
+def boxes_of(closed: list[tuple[ActorState, VolumeMesh]]) -> CasterBoxes:
+    """Return the names and world bounds of closed casters, stacked."""
+    return CasterBoxes.of([(caster.name, caster.bounds) for caster, _ in closed])
+
+
+def split_casters(plan: Cast) -> ClosedSplit:
+    """Sort a volume light's casters into closed and open ones; stack the closed ones' boxes.
+
+    Parameters
+    ----------
+    plan : Cast
+        The light's cast: its notes say what a caster scaled flat casts.
+
+    Returns
+    -------
+    ClosedSplit
+        :func:`~pvshadows.techniques.volume_meshes.split_closed`, and the boxes.
+
+    Raises
+    ------
+    OpenMeshError
+        With ``on_open="raise"``, naming the first open caster.
+    """
+    closed, open_casters = split_closed(plan)
+    return ClosedSplit(closed, open_casters, boxes_of(closed))
+
+
 def plan_volume(
     plan: Cast,
     renderer: vtk.vtkRenderer,
@@ -43,6 +82,7 @@ def plan_volume(
     warned: set[tuple],
     extrude_on_gpu: Callable[[], bool],
     choose_zmode: Callable[[Cast, VolumePlan], None],
+    split: Callable[[Cast], ClosedSplit],
 ) -> VolumePlan:
     """Decide what a volume light casts this frame; say it in ``plan.notes``.
 
@@ -65,6 +105,10 @@ def plan_volume(
         Chooses the plan's z-pass or z-fail for this frame's camera
         (:meth:`pvshadows.pipeline.plan_memo.PlanMemo.choose_zmode`, which
         calls :func:`choose_volume_zmode` where it must).
+    split : callable
+        Sorts the casters into closed and open ones and stacks the closed
+        ones' boxes (:meth:`pvshadows.pipeline.plan_memo.PlanMemo.split_closed`,
+        which calls :func:`split_casters` where it must).
 
     Returns
     -------
@@ -77,22 +121,23 @@ def plan_volume(
     OpenMeshError
         With ``on_open="raise"``, naming the first open caster.
     """
-    closed, open_casters = split_closed(plan)
+    closed, open_casters, boxes = split(plan)
     fallback = _fallback(plan, open_casters, snapshot, warned)
-    light = off_surfaces(plan.pose.homogeneous(), closed, plan.notes)
-    enclosing = enclosing_caster(light, closed)
+    light = off_surfaces(plan.pose.homogeneous(), closed, boxes, plan.notes)
+    enclosing = enclosing_caster(light, closed, boxes)
     while enclosing is not None and holds_the_rest(enclosing, closed, snapshot):
         plan.notes.append(
             f"the light and every other receiver are inside {enclosing.name}: it shadows "
             "none of them, so it casts no volume"
         )
         closed = [(c, m) for c, m in closed if c is not enclosing]
-        enclosing = enclosing_caster(light, closed)
+        boxes = boxes_of(closed)
+        enclosing = enclosing_caster(light, closed, boxes)
     if enclosing is not None:
         plan.notes.append(
             f"the light is inside {enclosing.name}: everything outside it is in its shadow"
         )
-        return VolumePlan(closed, light, enclosing, "", "gpu", fallback)
+        return VolumePlan(closed, boxes, light, enclosing, "", "gpu", fallback)
     for caster, mesh in closed:
         if mesh.how != "closed":
             plan.notes.append(f"{caster.name} counted as {HOW_COUNTED[mesh.how]}")
@@ -100,7 +145,7 @@ def plan_volume(
     if extrude == "gpu" and not extrude_on_gpu():
         extrude = "cpu"
         plan.notes.append("the extruding geometry shader does not compile here: cpu extrusion")
-    volume = VolumePlan(closed, light, None, "", extrude, fallback)
+    volume = VolumePlan(closed, boxes, light, None, "", extrude, fallback)
     choose_zmode(plan, volume)
     return volume
 
@@ -182,6 +227,8 @@ class ZpassRoom:
     ----------
     closed : tuple of ActorState
         The closed casters it was chosen among.
+    boxes : CasterBoxes
+        Their boxes: a plan with the very same boxes has the same casters.
     hidden : bool
         The renderer's hidden-line removal then.
     light : numpy.ndarray
@@ -193,6 +240,7 @@ class ZpassRoom:
     """
 
     closed: tuple[ActorState, ...]
+    boxes: CasterBoxes
     hidden: bool
     light: np.ndarray
     region: np.ndarray
@@ -234,7 +282,8 @@ class ZpassRoom:
         room = zpass_clearance(volume.light, region, volume.caster_boxes)
         if region is None or room <= 0.0:
             return None
-        return cls(tuple(c for c, _ in volume.closed), hidden, volume.light, region, room)
+        closed = tuple(c for c, _ in volume.closed)
+        return cls(closed, volume.caster_boxes, hidden, volume.light, region, room)
 
     def holds(self, volume: VolumePlan, view: FrameView, hidden: bool) -> bool:
         """Whether ``"auto"`` would count a volume plan seen from ``view`` with z-pass.
@@ -258,7 +307,9 @@ class ZpassRoom:
         closed = volume.closed
         if hidden != self.hidden or len(closed) != len(self.closed):
             return False
-        if any(c is not kept for (c, _), kept in zip(closed, self.closed, strict=True)):
+        if volume.caster_boxes is not self.boxes and any(
+            c is not kept for (c, _), kept in zip(closed, self.closed, strict=True)
+        ):
             return False
         region = view.near_region
         if region is None:

@@ -51,9 +51,16 @@ from pvshadows.gl.caster_batch import CasterBatch
 from pvshadows.gl.caster_draws import CasterDraws
 from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
+from pvshadows.gl.volume_batch import VolumeBatch, batchable
 from pvshadows.model.plan import Cast, VolumeCast
 from pvshadows.model.report import PassReport
-from pvshadows.passes.volume_stencil import VolumeDraw, VolumePasses
+from pvshadows.passes.volume_stencil import (
+    StencilSide,
+    VolumeDraw,
+    VolumePasses,
+    VolumeRows,
+    stencil_sides,
+)
 from pvshadows.scene.actor_state import ActorState, hides_what_is_behind
 from pvshadows.scene.render_target import tiled_viewport
 from pvshadows.scene.snapshot import Snapshot
@@ -89,53 +96,118 @@ class _LightState:
     frame: int = -1
     zmode: str = ""
     draws: list[VolumeDraw] = field(default_factory=list)
+    #: What the last count's draws read (for ``show_volumes``).
+    rows: VolumeRows | None = None
     fallback: Fallback | None = None
     #: What the mask was last right for: the cast, snapshot, view, target size and
     #: hidden-line removal (:meth:`VolumeTechnique.again` compares them).
     held: tuple | None = None
-    #: The last count's draws, whatever the camera (:class:`_Drawn`).
+    #: The last count's draws, whatever the camera and, extruded on the GPU, the light.
     drawn: _Drawn | None = None
-    #: A cast, and its closed casters' keys and transmittances (part of the mask's key).
+    #: Closed casters, and their keys and transmittances (part of the mask's key).
     closed_key: tuple = (None, ())
+    #: The small volumes of its closed casters in one vertex array, if enough.
+    batch: VolumeBatch | None = None
+
+    def batch_for(
+        self, window: vtk.vtkOpenGLRenderWindow, meshes: list[VolumeMesh | None]
+    ) -> VolumeBatch | None:
+        """Return the light's batch of these volume meshes: the kept one while it holds them."""
+        if self.batch is not None and self.batch.holds(meshes):
+            return self.batch
+        if self.batch is not None:
+            self.batch.release()
+        self.batch = VolumeBatch(window, meshes) if any(batchable(meshes)) else None
+        return self.batch
+
+    def release(self) -> None:
+        """Release the mask and the batch."""
+        self.mask.release()
+        if self.batch is not None:
+            self.batch.release()
+            self.batch = None
 
 
 @dataclass
 class _Drawn:
-    """What a light's stencil count draws besides the camera, kept while its cast holds.
+    """What a light's stencil count draws, kept while its closed casters and counting hold.
 
-    A camera that moves changes only each draw's ``model_to_clip`` (the
-    camera's matrix times the caster's model matrix); the batches, the
-    light in each caster's frame, the index ranges and the CPU volumes
-    stay, as long as the cast, its z-mode (which caps are drawn) and the
-    parallel projection's reach do.
+    A camera that moves changes only each caster's model-to-clip matrix,
+    and a light that moves the light in each caster's frame: both are
+    taken in one product over the stacked matrices (:meth:`rows`). The
+    batches, index ranges and draws stay as long as the closed casters
+    (the very list), the z-mode (which caps are drawn), the parallel
+    projection's reach and the extrusion do; volumes built on the CPU
+    follow the light, so theirs stay only for the same cast.
     """
 
     plan: Cast
+    closed: list[tuple[ActorState, VolumeMesh]]
     zmode: str
     reach: float
+    extrude: str
     batches: list[list[tuple]]
     passing: list[float]
     draws: list[list[VolumeDraw]]
-    #: Per batch, its draws' model matrices stacked ``(n, 4, 4)``.
-    models: list[np.ndarray]
+    #: Each count batch's draws by winding, through the light's volume batch or alone.
+    sides: list[list[StencilSide]]
+    #: The closed casters' model matrices and their inverses, stacked ``(n, 4, 4)``,
+    #: and how far each one's volume reaches (0: to infinity).
+    models: np.ndarray
+    inverses: np.ndarray
+    reaches: np.ndarray
+    #: The light the draws were last read for, and its place in each caster's frame.
+    light: np.ndarray
+    lights: np.ndarray
 
-    def seen_from(self, camera: np.ndarray) -> list[list[VolumeDraw]]:
-        """Return the draws with each model matrix composed with ``camera``."""
-        return [
-            [
-                VolumeDraw(
-                    draw.buffers,
-                    draw.extrude,
-                    to_clip,
-                    draw.light_model,
-                    draw.mirrored,
-                    draw.pieces,
-                    draw.extrude_to,
-                )
-                for draw, to_clip in zip(batch, camera @ models, strict=True)
-            ]
-            for batch, models in zip(self.draws, self.models, strict=True)
-        ]
+    def holds(
+        self,
+        plan: Cast,
+        closed: list[tuple[ActorState, VolumeMesh]],
+        zmode: str,
+        reach: float,
+        extrude: str,
+    ) -> bool:
+        """Return whether the draws serve this cast."""
+        if (self.zmode, self.reach, self.extrude) != (zmode, reach, extrude):
+            return False
+        return self.plan is plan or (extrude == "gpu" and self.closed is closed)
+
+    def rows(self, camera: np.ndarray, light: np.ndarray) -> VolumeRows:
+        """Return what the draws read for this camera and light."""
+        if not np.array_equal(light, self.light):
+            self.light, self.lights = light, lights_in_models(self.inverses, light)
+        return VolumeRows(camera @ self.models, self.lights, self.reaches)
+
+
+def lights_in_models(inverses: np.ndarray, light: np.ndarray) -> np.ndarray:
+    """Return a homogeneous light in the frames of many models at once.
+
+    Parameters
+    ----------
+    inverses : numpy.ndarray
+        ``(n, 4, 4)`` the models' inverse matrices.
+    light : numpy.ndarray
+        ``(4,)`` the light in world coordinates: ``(x, y, z, 1)`` or ``(d, 0)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n, 4)``; a point's ``w`` made 1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.geometry.transforms import translation
+    >>> from pvshadows.techniques.volume import lights_in_models
+    >>> inverses = np.linalg.inv([translation([1.0, 0.0, 0.0])])
+    >>> lights_in_models(inverses, np.array([0.0, 0.0, 2.0, 1.0])).tolist()
+    [[-1.0, 0.0, 2.0, 1.0]]
+    """
+    in_models = inverses @ light
+    positional = in_models[:, 3] != 0.0
+    in_models[positional] /= in_models[positional, 3:4]
+    return in_models
 
 
 @dataclass(frozen=True)
@@ -215,7 +287,7 @@ class VolumeTechnique:
         if width < 1 or height < 1:
             dropped = self._lights.pop(light_id, None)
             if dropped is not None:
-                dropped.mask.release()
+                dropped.release()
             return [PassReport("shadow volumes", "skipped", "the viewport has no pixels")]
         self._ensure_target(width, height)
         state = self._lights.get(light_id)
@@ -256,24 +328,28 @@ class VolumeTechnique:
         if reach:
             plan.notes.append("parallel projection: volumes end beyond the scene, not at infinity")
         drawn = state.drawn
-        if (
-            drawn is not None
-            and drawn.plan is plan
-            and (drawn.zmode, drawn.reach) == (zmode, reach)
-        ):
-            plan_batches, passing, draws = drawn.batches, drawn.passing, drawn.seen_from(camera)
+        if drawn is not None and drawn.holds(plan, closed, zmode, reach, extrude):
+            plan_batches, passing, draws = drawn.batches, drawn.passing, drawn.draws
             reports.extend(_cpu_reused(closed, extrude))
         else:
             plan_batches, passing = translucent_batches(closed)
+            models, inverses = self._stacked(closed)
+            lights = lights_in_models(inverses, light)
             draws, built = self._volume_draws(
-                plan, closed, plan_batches, camera, light, zmode, extrude, reach
+                plan, closed, plan_batches, models, lights, zmode, extrude, reach
             )
             reports.extend(built)
-            models = [
-                np.array([closed[n][0].model_matrix() for n, _, _ in batch]).reshape(-1, 4, 4)
-                for batch in plan_batches
-            ]
-            state.drawn = _Drawn(plan, zmode, reach, plan_batches, passing, draws, models)
+            meshes = [mesh if extrude == "gpu" else None for _, mesh in closed]
+            volume_batch = state.batch_for(self._window, meshes)
+            sides = [stencil_sides(batch, volume_batch) for batch in draws]
+            reaches = np.zeros(len(closed))
+            for draw in (d for batch in draws for d in batch):
+                reaches[draw.row] = draw.extrude_to
+            drawn = state.drawn = _Drawn(
+                plan, closed, zmode, reach, extrude, plan_batches, passing, draws, sides,
+                models, inverses, reaches, light, lights,
+            )  # fmt: skip
+        rows = drawn.rows(camera, light)
         bodies = [sum(e - s for _, s, e in batch) for batch in plan_batches]
         record = PassReport(
             f"stencil count ({zmode}, {extrude} extrusion)",
@@ -284,10 +360,12 @@ class VolumeTechnique:
         )
         assert self._target is not None
         with context.timer.measure(record):
-            self._passes.count(self._target, state.mask, draws, zmode, passing)
+            self._passes.count(
+                self._target, state.mask, drawn.sides, rows, zmode, passing, state.batch
+            )
         reports.append(record)
         state.key, state.frame, state.zmode = key, context.frame, zmode
-        state.draws = [draw for batch in draws for draw in batch]
+        state.draws, state.rows = [draw for batch in draws for draw in batch], rows
         return reports + self._fallbacks.update(state.fallback, context)
 
     def _actors_key(self, snapshot: Snapshot) -> tuple:
@@ -298,10 +376,10 @@ class VolumeTechnique:
 
     @staticmethod
     def _closed_key(state: _LightState, plan: VolumeCast) -> tuple:
-        """Return a cast's closed casters' keys and transmittances (per cast)."""
-        if state.closed_key[0] is not plan:
-            closed = plan.volume.closed
-            state.closed_key = (plan, tuple((*c.key(), c.transmittance) for c, _ in closed))
+        """Return a cast's closed casters' keys and transmittances (per list of closed casters)."""
+        closed = plan.volume.closed
+        if state.closed_key[0] is not closed:
+            state.closed_key = (closed, tuple((*c.key(), c.transmittance) for c, _ in closed))
         return state.closed_key[1]
 
     def _depth_actors(self, context: FrameContext) -> _DepthActors:
@@ -338,7 +416,7 @@ class VolumeTechnique:
         if self._target is not None:
             self._target.release()
         for state in self._lights.values():
-            state.mask.release()
+            state.release()
         self._lights.clear()
         self._target = VolumeTarget(self._window, width, height)
         self._depth_key, self._depth_frame = None, -1
@@ -364,14 +442,16 @@ class VolumeTechnique:
         plan: Cast,
         closed: list[tuple[ActorState, VolumeMesh]],
         plan_batches: list[list[tuple]],
-        camera: np.ndarray,
-        light: np.ndarray,
+        models: np.ndarray,
+        lights: np.ndarray,
         zmode: str,
         extrude: str,
         reach: float,
     ) -> tuple[list[list[VolumeDraw]], list[PassReport]]:
         """Each batch's draws, and a report of the CPU rebuild (``extrude="cpu"``).
 
+        Draw ``number`` reads row ``number`` of the closed casters' matrices
+        (``models``, stacked) and of ``lights``, the light in each one's frame.
         ``reach`` is 0 to extrude to infinity, or how far (world units) to
         extrude volumes for a parallel projection.
         """
@@ -381,15 +461,9 @@ class VolumeTechnique:
                 ranges_of.setdefault(number, []).append((first, end))
         per_caster: list[list[VolumeDraw]] = []
         rebuilt, reused, seconds = 0, 0, 0.0
-        models, inverses = self._stacked(closed)
-        # The light in every caster's model coordinates at once; a point's w made 1.
-        lights_model = inverses @ light
-        positional = lights_model[:, 3] != 0.0
-        lights_model[positional] /= lights_model[positional, 3:4]
-        to_clip = camera @ models
         for number, (caster, mesh) in enumerate(closed):
             model = models[number]
-            light_model, mirrored = lights_model[number], caster.mirrored
+            light_model, mirrored = lights[number], caster.mirrored
             # Model units that are at least `reach` world units in every direction.
             extrude_to = (
                 reach / np.linalg.svd(model[:3, :3], compute_uv=False)[-1] if reach else 0.0
@@ -400,17 +474,7 @@ class VolumeTechnique:
                 for first, end in ranges_of[number]:
                     a, b = int(mesh.body_starts[first]), int(mesh.body_starts[end])
                     span = (6 * a, 6 * (b - a), "all")
-                    draws.append(
-                        VolumeDraw(
-                            buffers,
-                            "gpu",
-                            to_clip[number],
-                            light_model,
-                            mirrored,
-                            [span],
-                            extrude_to,
-                        )
-                    )
+                    draws.append(VolumeDraw(buffers, "gpu", number, mirrored, [span], extrude_to))
             else:
                 volume = self._cpu_volume(plan, caster, mesh, light_model, extrude_to)
                 if volume.seconds:
@@ -427,11 +491,7 @@ class VolumeTechnique:
                         starts = volume.starts[piece]
                         first = volume.bases[piece] + int(starts[s])
                         pieces.append((3 * first, 3 * int(starts[e] - starts[s]), piece))
-                    draws.append(
-                        VolumeDraw(
-                            volume.buffers, "cpu", to_clip[number], light_model, mirrored, pieces
-                        )
-                    )
+                    draws.append(VolumeDraw(volume.buffers, "cpu", number, mirrored, pieces))
             per_caster.append(draws)
         reports = []
         if extrude == "cpu" and closed:
@@ -653,8 +713,9 @@ class VolumeTechnique:
         target = tiled_viewport(context.renderer)
         (x0, y0), (width, height) = target.origin, target.size
         for state in self._lights.values():
-            if state.draws:
-                self._passes.overlay(state.draws, (x0, y0, width, height), OVERLAY_COLOUR)
+            if state.draws and state.rows is not None:
+                viewport = (x0, y0, width, height)
+                self._passes.overlay(state.draws, state.rows, viewport, OVERLAY_COLOUR)
 
     def mask_of(self, light: vtk.vtkLight) -> MaskTexture | None:
         """Return the mask kept for a light, if any (for tests and debugging)."""
@@ -683,22 +744,22 @@ class VolumeTechnique:
         Parameters
         ----------
         plans : list of Cast
-            This frame's casts: the very casts of the last call (a frame that
-            planned nothing) leave nothing to release, and their casters are
-            not listed again.
+            This frame's casts: casts of the same lights over the very
+            casters of the last call's (a frame in which only the camera or
+            the lights moved) leave nothing to release, and their casters
+            are not listed again.
         """
         using = [p for p in plans if p.technique == self.name]
-        kept = self._kept_for
-        if len(using) == len(kept) and all(p is k for p, k in zip(using, kept, strict=True)):
+        kept, self._kept_for = self._kept_for, tuple(using)
+        if len(using) == len(kept) and all(map(_same_casters, using, kept)):
             return
-        self._kept_for = tuple(using)
         self._release_unused(using)
 
     def _release_unused(self, using: list[Cast]) -> None:
         """Release what none of ``using`` (volume casts) needs."""
         alive = {p.key for p in using}
         for key in set(self._lights) - alive:
-            self._lights.pop(key).mask.release()
+            self._lights.pop(key).release()
         casters = {vtk_id(c.actor) for p in using for c in p.casters}
         for mesh_key in set(self._meshes) - casters:
             self._meshes.pop(mesh_key)[1].release()
@@ -715,6 +776,13 @@ class VolumeTechnique:
         self._release_unused([])
         self._fallbacks.release()
         self._passes.release()
+
+
+def _same_casters(cast: Cast, before: Cast) -> bool:
+    """Tell whether two volume casts are of the same light over the very same closed casters."""
+    if not isinstance(cast, VolumeCast) or not isinstance(before, VolumeCast):
+        return cast is before
+    return cast.key == before.key and cast.volume.closed is before.volume.closed
 
 
 def _cpu_reused(closed: list, extrude: str) -> list[PassReport]:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from pvshadows.geometry.boxes import CasterBoxes
 from pvshadows.geometry.volume_casters import VolumeMesh, winding_number
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.snapshot import Snapshot
@@ -22,28 +23,26 @@ OFF_SURFACE = 1e-5
 
 
 def off_surfaces(
-    light: np.ndarray, closed: list[tuple[ActorState, VolumeMesh]], notes: list[str]
+    light: np.ndarray,
+    closed: list[tuple[ActorState, VolumeMesh]],
+    boxes: CasterBoxes,
+    notes: list[str],
 ) -> np.ndarray:
     """Move a point light lying in the plane of a caster's face a hair off it, outwards.
 
     A face in the light's plane is neither lit nor unlit, and the silhouette
     edges around it come out inconsistent: whole volumes go missing. Cast
     from 1e-5 of the caster's size outside every such face, the shadows
-    differ from the exact ones by far less than a pixel.
+    differ from the exact ones by far less than a pixel. Only the casters
+    whose boxes (``boxes``, stacked) come that near the light are looked at.
     """
     if light[3] == 0.0:
         return light
     position = light[:3]
     push = np.zeros(3)
-    x, y, z = position.tolist()
-    for caster, mesh in closed:
-        (x0, y0, z0), (x1, y1, z1) = caster.box
+    for number in boxes.around(position, ON_SURFACE * boxes.diagonals):
+        caster, mesh = closed[number]
         size = caster.diagonal
-        near = ON_SURFACE * size
-        if not (x0 - near <= x <= x1 + near and y0 - near <= y <= y1 + near):
-            continue
-        if not z0 - near <= z <= z1 + near:
-            continue
         model = caster.model_matrix()
         points = mesh.points @ model[:3, :3].T + model[:3, 3]
         corners = points[mesh.triangles]
@@ -65,16 +64,16 @@ def off_surfaces(
 
 
 def enclosing_caster(
-    light: np.ndarray, closed: list[tuple[ActorState, VolumeMesh]]
+    light: np.ndarray, closed: list[tuple[ActorState, VolumeMesh]], boxes: CasterBoxes
 ) -> ActorState | None:
-    """Return the first closed caster whose inside holds a positional light, or ``None``."""
+    """Return the first closed caster whose inside holds a positional light, or ``None``.
+
+    Only the casters whose boxes (``boxes``, stacked) hold the light are looked at.
+    """
     if light[3] == 0.0:
         return None
-    x, y, z = light[:3].tolist()
-    for caster, mesh in closed:
-        (x0, y0, z0), (x1, y1, z1) = caster.box
-        if not (x0 <= x <= x1 and y0 <= y <= y1 and z0 <= z <= z1):
-            continue
+    for number in boxes.around(light[:3]):
+        caster, mesh = closed[number]
         if mesh.how == "two-sided sheet":
             continue
         model = caster.model_inverse @ np.append(light[:3], 1.0)
