@@ -1241,8 +1241,17 @@ def test_a_moving_volume_light_keeps_its_casters_split_and_its_draws(extrude, mo
     else:  # volumes built on the CPU follow the light
         assert state.drawn is not drawn
     assert pl.shadows.measure(light).misclassified <= MASK_BOUNDS["volume"]
-    shadows.plans[0].cast.casters[0].actor.AddPosition(0.05, 0.0, 0.0)  # sorted again
+    # A caster that moves is patched into the split; it casts the same volume from
+    # elsewhere, so volumes extruded on the GPU keep their draws.
+    drawn = state.drawn
+    moved = shadows.plans[0].cast.casters[0].actor
+    moved.AddPosition(0.05, 0.0, 0.0)
     draw(pl)
-    assert shadows.memo.splits == splits + 1
+    assert (shadows.memo.splits, shadows.memo.split_patches) == (splits, 1)
+    assert (state.drawn is drawn) == (extrude == "gpu")
+    assert pl.shadows.measure(light).misclassified <= MASK_BOUNDS["volume"]
+    moved.mapper.dataset.copy_from(pv.Cube(center=moved.center, x_length=0.3))  # a new mesh
+    draw(pl)
+    assert (shadows.memo.splits, shadows.memo.split_patches) == (splits, 2)
     assert state.drawn is not drawn
     assert pl.shadows.measure(light).misclassified <= MASK_BOUNDS["volume"]

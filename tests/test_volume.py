@@ -208,8 +208,9 @@ def test_more_than_255_overlapping_volumes(monkeypatch):
     assert pl.shadows.measure(light).misclassified <= EXACT
     # The same frame counted in one batch shows the wrap: the test can fail.
     monkeypatch.setattr(volume_casters, "MAX_BODIES_PER_BATCH", 1000)
-    # a caster that moves batches them again: the camera or the light alone keeps the batches
-    pl.actors["stack"].position = (0.0, 0.0, 1e-4)
+    # new points batch them again: the camera, the light or the stack moving keeps the batches
+    stack = pl.actors["stack"].mapper.dataset
+    stack.points = stack.points + np.array([0.0, 0.0, 1e-4])
     assert pl.shadows.measure(light).missed_shadow > 0.05
 
 

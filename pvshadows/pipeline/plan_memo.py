@@ -110,11 +110,13 @@ class PlanMemo:
         #: What each volume light last chose its z-mode for: the volume plan, view
         #: and hidden-line removal, and the room its z-pass had (:class:`ZpassRoom`).
         self._zmodes: dict[int, tuple[VolumePlan, FrameView, bool, ZpassRoom | None]] = {}
-        #: Each volume light's last split of its casters: the casters and ``on_open``
-        #: it was made for, the split, and the notes it made.
-        self._splits: dict[int, tuple[list[ActorState], str, ClosedSplit, list[str]]] = {}
-        #: Casters sorted into closed and open ones (:meth:`split_closed`) since made.
+        #: Each volume light's last split of its casters: the ``on_open`` it was made
+        #: for, the split, and the notes it made.
+        self._splits: dict[int, tuple[str, ClosedSplit, list[str]]] = {}
+        #: Casters sorted into closed and open ones (:meth:`split_closed`) since made,
+        #: and splits patched over casters that moved.
         self.splits = 0
+        self.split_patches = 0
 
     def plane(self, receivers: list[ActorState]) -> PlaneChoice:
         """Return the receiving plane of planar lights, chosen again only for other receivers.
@@ -374,7 +376,8 @@ class PlanMemo:
         light: it moved, or only the camera did), gets the very split back
         (:func:`~pvshadows.pipeline.volume_plan.split_casters`), and the
         notes it made are said again; the volume technique then keeps its
-        draws while only the light or the camera moves.
+        draws while only the light or the camera moves. A few casters that
+        moved are patched in (:meth:`ClosedSplit.patched`).
 
         Parameters
         ----------
@@ -394,13 +397,21 @@ class PlanMemo:
         """
         on_open = cast.settings.on_open
         kept = self._splits.get(id(cast.light))
-        if kept is not None and kept[1] == on_open and same_objects(kept[0], cast.casters):
-            cast.notes.extend(kept[3])
-            return kept[2]
+        if kept is not None and kept[0] == on_open:
+            split, notes = kept[1], kept[2]
+            if same_objects(split.casters, cast.casters):
+                cast.notes.extend(notes)
+                return split
+            patched = split.patched(cast.casters)
+            if patched is not None:
+                self.split_patches += 1
+                self._splits[id(cast.light)] = (on_open, patched, notes)
+                cast.notes.extend(notes)
+                return patched
         said = len(cast.notes)
         split = split_casters(cast)
         self.splits += 1
-        self._splits[id(cast.light)] = (cast.casters, on_open, split, cast.notes[said:])
+        self._splits[id(cast.light)] = (on_open, split, cast.notes[said:])
         return split
 
     def choose_zmode(

@@ -36,16 +36,75 @@ from pvshadows.techniques.volume_light import (
     holds_the_rest,
     off_surfaces,
 )
-from pvshadows.techniques.volume_meshes import HOW_COUNTED, open_reason, split_closed
+from pvshadows.techniques.volume_meshes import (
+    HOW_COUNTED,
+    OpenMeshError,
+    open_reason,
+    prepared_mesh,
+    split_closed,
+)
+
+#: A split is patched for at most this many replaced casters; more are split afresh.
+PATCHED_AT_MOST = 16
 
 
 class ClosedSplit(NamedTuple):
     """A volume light's casters sorted into closed and open ones (:func:`split_casters`)."""
 
+    #: The casters it sorted, in order.
+    casters: list[ActorState]
     closed: list[tuple[ActorState, VolumeMesh]]
     open_casters: list[ActorState]
     #: The closed casters' boxes, stacked.
     boxes: CasterBoxes
+    #: Per caster, its number among the closed ones, -1 for one open or scaled flat.
+    closed_rows: list[int]
+
+    def patched(self, casters: list[ActorState]) -> ClosedSplit | None:
+        """Return this split over new states of some of its casters, or ``None`` to split afresh.
+
+        Casters replaced by new states of the same actors (moved, say) that
+        stay closed and unflattened are patched into the closed casters and
+        their boxes; the rest of the split, and what its notes said, holds.
+
+        Parameters
+        ----------
+        casters : list of ActorState
+            The light's casters now.
+
+        Returns
+        -------
+        ClosedSplit or None
+            ``None`` for other casters, more than :data:`PATCHED_AT_MOST`
+            replaced, or one that is not closed now or was not before.
+        """
+        before = self.casters
+        if len(casters) != len(before):
+            return None
+        pairs = enumerate(zip(casters, before, strict=True))
+        changed = [i for i, (now, then) in pairs if now is not then]
+        if len(changed) > PATCHED_AT_MOST:
+            return None
+        closed = list(self.closed)
+        low, high, names = self.boxes.low.copy(), self.boxes.high.copy(), list(self.boxes.names)
+        for i in changed:
+            row, state = self.closed_rows[i], casters[i]
+            if row < 0 or state.actor is not before[i].actor or state.determinant == 0.0:
+                return None
+            try:
+                mesh = prepared_mesh(state.triangles, state.name)
+            except OpenMeshError:
+                return None
+            closed[row] = (state, mesh)
+            (low[row], high[row]), names[row] = state.bounds, state.name
+        boxes = CasterBoxes(
+            tuple(names),
+            low,
+            high,
+            float(max(np.abs(low).max(initial=0.0), np.abs(high).max(initial=0.0))),
+            np.linalg.norm(high - low, axis=1),
+        )
+        return ClosedSplit(casters, closed, self.open_casters, boxes, self.closed_rows)
 
 
 def boxes_of(closed: list[tuple[ActorState, VolumeMesh]]) -> CasterBoxes:
@@ -72,7 +131,9 @@ def split_casters(plan: Cast) -> ClosedSplit:
         With ``on_open="raise"``, naming the first open caster.
     """
     closed, open_casters = split_closed(plan)
-    return ClosedSplit(closed, open_casters, boxes_of(closed))
+    number = {id(caster): row for row, (caster, _) in enumerate(closed)}
+    rows = [number.get(id(caster), -1) for caster in plan.casters]
+    return ClosedSplit(plan.casters, closed, open_casters, boxes_of(closed), rows)
 
 
 def plan_volume(
@@ -121,7 +182,7 @@ def plan_volume(
     OpenMeshError
         With ``on_open="raise"``, naming the first open caster.
     """
-    closed, open_casters, boxes = split(plan)
+    _, closed, open_casters, boxes, _ = split(plan)
     fallback = _fallback(plan, open_casters, snapshot, warned)
     light = off_surfaces(plan.pose.homogeneous(), closed, boxes, plan.notes)
     enclosing = enclosing_caster(light, closed, boxes)

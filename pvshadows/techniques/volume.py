@@ -138,7 +138,10 @@ class _Drawn:
     batches, index ranges and draws stay as long as the closed casters
     (the very list), the z-mode (which caps are drawn), the parallel
     projection's reach and the extrusion do; volumes built on the CPU
-    follow the light, so theirs stay only for the same cast.
+    follow the light, so theirs stay only for the same cast. Casters that
+    moved but cast the same volumes (the same meshes, handedness and
+    transmittances, extruded to infinity on the GPU) keep them too, their
+    matrices stacked again (:meth:`take`).
     """
 
     plan: Cast
@@ -168,10 +171,19 @@ class _Drawn:
         reach: float,
         extrude: str,
     ) -> bool:
-        """Return whether the draws serve this cast."""
+        """Return whether the draws serve this cast (:meth:`take` its casters where they moved)."""
         if (self.zmode, self.reach, self.extrude) != (zmode, reach, extrude):
             return False
-        return self.plan is plan or (extrude == "gpu" and self.closed is closed)
+        if self.plan is plan or (extrude == "gpu" and self.closed is closed):
+            return True
+        return extrude == "gpu" and not reach and _same_volumes(closed, self.closed)
+
+    def take(
+        self, closed: list[tuple[ActorState, VolumeMesh]], models: np.ndarray, inverses: np.ndarray
+    ) -> None:
+        """Take casters that cast the same volumes from elsewhere: their stacked matrices."""
+        self.closed, self.models, self.inverses = closed, models, inverses
+        self.lights = lights_in_models(inverses, self.light)
 
     def rows(self, camera: np.ndarray, light: np.ndarray) -> VolumeRows:
         """Return what the draws read for this camera and light."""
@@ -329,6 +341,8 @@ class VolumeTechnique:
             plan.notes.append("parallel projection: volumes end beyond the scene, not at infinity")
         drawn = state.drawn
         if drawn is not None and drawn.holds(plan, closed, zmode, reach, extrude):
+            if drawn.closed is not closed:
+                drawn.take(closed, *self._stacked(closed))
             plan_batches, passing, draws = drawn.batches, drawn.passing, drawn.draws
             reports.extend(_cpu_reused(closed, extrude))
         else:
@@ -776,6 +790,22 @@ class VolumeTechnique:
         self._release_unused([])
         self._fallbacks.release()
         self._passes.release()
+
+
+def _same_volumes(
+    closed: list[tuple[ActorState, VolumeMesh]], before: list[tuple[ActorState, VolumeMesh]]
+) -> bool:
+    """Tell whether closed casters cast the volumes of others, wherever they stand.
+
+    The same meshes in the same order, each caster as mirrored and letting
+    as much light through as the one before it.
+    """
+    return len(closed) == len(before) and all(
+        mesh is was
+        and caster.mirrored == then.mirrored
+        and caster.transmittance == then.transmittance
+        for (caster, mesh), (then, was) in zip(closed, before, strict=True)
+    )
 
 
 def _same_casters(cast: Cast, before: Cast) -> bool:
