@@ -46,6 +46,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.geometry.silhouette import volume_geometry
 from pvshadows.geometry.transforms import column_major
 from pvshadows.geometry.volume_casters import VolumeMesh
+from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.buffers import IndexedBuffers
 from pvshadows.gl.caster_batch import CasterBatch
 from pvshadows.gl.caster_draws import CasterDraws
@@ -63,7 +64,7 @@ from pvshadows.passes.volume_stencil import (
 )
 from pvshadows.scene.actor_state import ActorState, hides_what_is_behind
 from pvshadows.scene.render_target import tiled_viewport
-from pvshadows.scene.snapshot import Snapshot
+from pvshadows.scene.snapshot import ALL_ACTORS, Snapshot
 from pvshadows.scene.triangles import ActorTriangles, vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, LightFrame
@@ -239,6 +240,36 @@ class _DepthActors:
     buffers: list[IndexedBuffers]
     culls: list[str | None]
     rows: np.ndarray | None
+    #: Per actor of the snapshot, its number among those drawn, -1 for one left out.
+    numbers: list[int]
+
+    def patched(
+        self, snapshot: Snapshot, renderer: vtk.vtkRenderer, buffers: ActorBuffers
+    ) -> _DepthActors | None:
+        """Return this over a snapshot that follows its own, or ``None`` to gather afresh.
+
+        The replaced actors are patched in, as long as each is drawn or left
+        out as before.
+        """
+        keys, models, drawn = list(self.keys), self.models.copy(), list(self.buffers)
+        for row, state in snapshot.patches(ALL_ACTORS):
+            number = self.numbers[row]
+            if (number >= 0) != hides_what_is_behind(state, renderer):
+                return None
+            if number >= 0:
+                keys[number], models[number] = state.key(), state.model_matrix()
+                drawn[number] = buffers.get(state)
+        return _DepthActors(
+            snapshot,
+            self.hidden,
+            self.batch,
+            tuple(keys),
+            models,
+            drawn,
+            self.culls,
+            self.rows,
+            self.numbers,
+        )
 
 
 class VolumeTechnique:
@@ -264,7 +295,7 @@ class VolumeTechnique:
         #: Per snapshot: every actor's part of a mask's key; and, per hidden-line
         #: removal too, the actors the depth pre-pass draws and their keys.
         self._actors_of: tuple = (None, ())
-        self._depth_of = _DepthActors(None, False, None, (), np.zeros((0, 4, 4)), [], [], None)
+        self._depth_of = _DepthActors(None, False, None, (), np.zeros((0, 4, 4)), [], [], None, [])
         self._fallbacks = OpenCasterFallbacks(window)
         self._context: FrameContext | None = None
         #: The volume casts of the last :meth:`keep_only`.
@@ -383,10 +414,22 @@ class VolumeTechnique:
         return reports + self._fallbacks.update(state.fallback, context)
 
     def _actors_key(self, snapshot: Snapshot) -> tuple:
-        """Return each actor's key and whether its faces are drawn (per snapshot)."""
-        if self._actors_of[0] is not snapshot:
-            self._actors_of = (snapshot, tuple((*a.key(), a.faces_drawn) for a in snapshot.actors))
-        return self._actors_of[1]
+        """Return each actor's key and whether its faces are drawn (per snapshot).
+
+        A snapshot that follows the last one patches its replaced actors' parts.
+        """
+        kept = self._actors_of
+        if kept[0] is snapshot:
+            return kept[1]
+        if kept[0] is not None and snapshot.parent is kept[0]:
+            parts = list(kept[1])
+            for row, state in snapshot.patches(ALL_ACTORS):
+                parts[row] = (*state.key(), state.faces_drawn)
+            key = tuple(parts)
+        else:
+            key = tuple((*a.key(), a.faces_drawn) for a in snapshot.actors)
+        self._actors_of = (snapshot, key)
+        return key
 
     @staticmethod
     def _closed_key(state: _LightState, plan: VolumeCast) -> tuple:
@@ -406,13 +449,20 @@ class VolumeTechnique:
         hidden = bool(vtk.vtkRenderer.GetUseHiddenLineRemoval(context.renderer))
         batch = buffers.batch_of(snapshot)
         kept = self._depth_of
-        if kept.snapshot is not snapshot or kept.hidden != hidden or kept.batch is not batch:
+        if kept.snapshot is snapshot and kept.hidden == hidden and kept.batch is batch:
+            return kept
+        follows = kept.snapshot is not None and snapshot.parent is kept.snapshot
+        patched = None
+        if follows and kept.hidden == hidden and kept.batch is batch:
+            patched = kept.patched(snapshot, context.renderer, buffers)
+        if patched is None:
             actors = [a for a in snapshot.actors if hides_what_is_behind(a, context.renderer)]
+            number = {id(a): n for n, a in enumerate(actors)}
             rows = None
             if batch is not None:
                 among = snapshot.caster_rows_among(actors)
                 rows = np.where(among >= 0, batch.rows[among], -1)
-            kept = self._depth_of = _DepthActors(
+            patched = _DepthActors(
                 snapshot,
                 hidden,
                 batch,
@@ -421,8 +471,10 @@ class VolumeTechnique:
                 [buffers.get(a) for a in actors],
                 [None] * len(actors),
                 rows,
+                [number.get(id(a), -1) for a in snapshot.actors],
             )
-        return kept
+        self._depth_of = patched
+        return patched
 
     def _ensure_target(self, width: int, height: int) -> None:
         if self._target is not None and self._target.size == (width, height):
@@ -758,10 +810,10 @@ class VolumeTechnique:
         Parameters
         ----------
         plans : list of Cast
-            This frame's casts: casts of the same lights over the very
-            casters of the last call's (a frame in which only the camera or
-            the lights moved) leave nothing to release, and their casters
-            are not listed again.
+            This frame's casts: casts of the same lights over the same
+            actors as the last call's (a frame in which only the camera,
+            the lights or some casters moved) leave nothing to release, and
+            their casters are not listed again.
         """
         using = [p for p in plans if p.technique == self.name]
         kept, self._kept_for = self._kept_for, tuple(using)
@@ -809,10 +861,15 @@ def _same_volumes(
 
 
 def _same_casters(cast: Cast, before: Cast) -> bool:
-    """Tell whether two volume casts are of the same light over the very same closed casters."""
+    """Tell whether two volume casts are of the same light over the same actors."""
     if not isinstance(cast, VolumeCast) or not isinstance(before, VolumeCast):
         return cast is before
-    return cast.key == before.key and cast.volume.closed is before.volume.closed
+    if cast.key != before.key:
+        return False
+    now, then = cast.casters, before.casters
+    return now is then or (
+        len(now) == len(then) and all(a.actor is b.actor for a, b in zip(now, then, strict=True))
+    )
 
 
 def _cpu_reused(closed: list, extrude: str) -> list[PassReport]:
