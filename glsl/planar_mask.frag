@@ -6,7 +6,7 @@
 // flattened image covers each pixel twice, so the mask holds what the ray
 // brings; where opaque casters overlap the shadow stays exactly 0.
 
-uniform float transmittance;
+flat in float transmittance;
 
 out vec4 fragOutput0;
 

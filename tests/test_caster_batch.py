@@ -166,6 +166,26 @@ def test_a_volume_count_submits_one_multi_draw_per_chunk_of_rows(monkeypatch):
     assert state.batch is batch  # the camera moved: the same batch
 
 
+@pytest.mark.parametrize("kind", ["spot", "point", "directional"])
+@pytest.mark.parametrize("chunk", [256, 8])
+def test_batched_flattened_casters_draw_the_same_planar_mask_as_one_by_one(
+    kind, chunk, monkeypatch
+):
+    _, _, alone, _ = _frames(kind, {"technique": "planar"}, 10**9, monkeypatch)
+    monkeypatch.setattr(caster_batch, "MAX_CHUNK", chunk)
+    plotter, _, batched, keeper = _frames(kind, {"technique": "planar"}, 16, monkeypatch)
+    assert keeper.builds == 2
+    for frame, (one, other) in enumerate(zip(alone, batched, strict=True)):
+        assert np.array_equal(one, other), f"frame {frame}: {(one != other).any(-1).sum()} px"
+    assert all(not np.array_equal(a, b) for a, b in itertools.pairwise(batched))
+    batch = keeper._kept[1]
+    before = batch.calls
+    plotter.camera.azimuth = 5.0
+    draw(plotter)
+    rows = len(batch)
+    assert batch.calls - before == 2 * -(-rows // batch.chunk)  # a chunk and a draw each
+
+
 @pytest.mark.parametrize("kind", ["spot", "point"])
 def test_chunks_of_few_rows_draw_the_same_depths(kind, monkeypatch):
     _, _, alone, _ = _frames(kind, {"cull_front": True}, 10**9, monkeypatch)

@@ -1,5 +1,7 @@
 """Planar projected shadows against exact ray-cast visibility, on the same frame."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 import pyvista as pv
@@ -177,9 +179,9 @@ def test_caster_crossing_the_plane_casts_only_above_it(monkeypatch):
 
     def unclipped(*args):
         draws = flat_draws(*args)
-        for d in draws:
-            d.plane_model = d.plane_model + np.array([0.0, 0.0, 0.0, 100.0])
-        return draws
+        (name, planes), *others = draws.vectors
+        lowered = np.ascontiguousarray(planes + np.float32([0.0, 0.0, 0.0, 100.0]))
+        return dataclasses.replace(draws, vectors=((name, lowered), *others))
 
     monkeypatch.setattr(planar, "flat_draws", unclipped)
     pl.camera.azimuth = 1.0

@@ -43,19 +43,21 @@ _UNSIGNED_INT, _TRIANGLES = 0x1405, 0x0004
 _SIDE_NAMES = (None, "front", "back")
 
 
-def chunk_rows(window: vtk.vtkOpenGLRenderWindow) -> int:
-    """Return how many caster matrices the vertex stage can hold in one uniform array.
+def chunk_rows(window: vtk.vtkOpenGLRenderWindow, vectors: int = 0) -> int:
+    """Return how many casters' uniforms the vertex stage can hold in one set of arrays.
 
     Parameters
     ----------
     window : vtk.vtkOpenGLRenderWindow
         A window whose context is current.
+    vectors : int, default: 0
+        ``vec4`` uniforms per caster besides its matrix.
 
     Returns
     -------
     int
-        A quarter of ``GL_MAX_VERTEX_UNIFORM_COMPONENTS`` over 16 floats
-        (room is left for the pass's other uniforms), at most
+        ``GL_MAX_VERTEX_UNIFORM_COMPONENTS``, less room for the pass's other
+        uniforms, over the floats of one caster's uniforms, at most
         :data:`MAX_CHUNK` and at least 8.
 
     Examples
@@ -69,7 +71,7 @@ def chunk_rows(window: vtk.vtkOpenGLRenderWindow) -> int:
     """
     gl = opengl_for(window)
     components = int(gl.glGetIntegerv(gl.GL_MAX_VERTEX_UNIFORM_COMPONENTS))
-    return int(min(MAX_CHUNK, max(8, (components - 64) // 16)))
+    return int(min(MAX_CHUNK, max(8, (components - 64) // (16 + 4 * vectors))))
 
 
 def worth_batching(casters: int) -> bool:
@@ -187,6 +189,8 @@ class CasterBatch:
         columns: np.ndarray,
         culls: Sequence[str | None],
         cull: Callable[[str | None], None],
+        vectors: Sequence[tuple[str, np.ndarray]] = (),
+        chunk: int = 0,
     ) -> None:
         """Draw some of the batch's casters with a bound program built with ``BATCHED`` rows.
 
@@ -205,18 +209,29 @@ class CasterBatch:
             Their sides not to draw.
         cull : callable
             Sets the side to cull.
+        vectors : sequence of tuple, optional
+            ``(name, values)``: more ``vec4`` per caster, ``values`` ``(k, 4)``
+            float32, set as the uniform array ``name + "s"`` with the matrices.
+        chunk : int, optional
+            Rows per chunk of uniforms, at most :attr:`chunk` (the program's
+            ``BATCHED``); :attr:`chunk` by default.
         """
         if not len(rows):
             return
         gl = raw_calls()
-        chunk = self.chunk
+        chunk = chunk or self.chunk
         in_order = len(rows) < 2 or not bool((rows[1:] < rows[:-1]).any())
         if in_order and len(rows) == len(self):  # every row: no gaps to fill
             every = columns
             assert every.dtype == np.float32 and every.flags.c_contiguous  # read by address
+            extras = [v for _, v in vectors]
+            assert all(v.dtype == np.float32 and v.flags.c_contiguous for v in extras)
         else:
             every = np.zeros((len(self), 4, 4), dtype=np.float32)
             every[rows] = columns
+            extras = [np.zeros((len(self), 4), dtype=np.float32) for _ in vectors]
+            for extra, (_, values) in zip(extras, vectors, strict=True):
+                extra[rows] = values
         if any(culls):
             sides = np.array([_SIDE_NAMES.index(c) for c in culls], dtype=np.int8)
         else:
@@ -226,6 +241,7 @@ class CasterBatch:
             rows, sides = rows[order], sides[order]
         matrices = program.FindUniform("modelToLights")
         base_location = program.FindUniform("rowBase")
+        extra_locations = [program.FindUniform(name + "s") for name, _ in vectors]
         position, row = (program.FindAttributeArray(n) for n in ("position", "casterRow"))
         gl.bind(self._buffers.vertex_array(position, row))
         starts = np.searchsorted(rows, np.arange(0, len(self), chunk))
@@ -237,6 +253,8 @@ class CasterBatch:
             base = first * chunk
             size = min(chunk, len(self) - base)
             gl.matrix(matrices, size, 0, every[base:].ctypes.data)
+            for location, extra in zip(extra_locations, extras, strict=True):
+                gl.vector(location, size, extra[base:].ctypes.data)
             gl.uniform_int(base_location, base)
             in_chunk, chunk_sides = rows[start:end], sides[start:end]
             one_side = not chunk_sides.any()

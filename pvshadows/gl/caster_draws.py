@@ -33,6 +33,13 @@ class CasterDraws:
         The snapshot's small casters in one vertex array, when there is one.
     rows : numpy.ndarray or None
         ``(n,)`` each caster's row in ``batch``, -1 for one drawn on its own.
+    vectors : tuple of tuple
+        ``(name, values)``: more ``vec4`` per caster, ``values`` ``(n, 4)``
+        float32 C-contiguous, set as ``uniform vec4 name`` for a caster drawn
+        on its own and as the array ``name + "s"`` for the batch.
+    chunk : int
+        Rows per chunk of the batch's uniforms where the pass's program holds
+        fewer than the batch's (0: the batch's).
     """
 
     buffers: Sequence[IndexedBuffers]
@@ -40,6 +47,8 @@ class CasterDraws:
     culls: Sequence[str | None]
     batch: CasterBatch | None = None
     rows: np.ndarray | None = None
+    vectors: tuple[tuple[str, np.ndarray], ...] = ()
+    chunk: int = 0
 
     def __len__(self) -> int:
         return len(self.buffers)
@@ -64,6 +73,8 @@ class CasterDraws:
             [self.culls[i] for i in chosen],
             self.batch,
             None if self.rows is None else self.rows[chosen],
+            tuple((name, values[chosen]) for name, values in self.vectors),
+            self.chunk,
         )
 
     def batched(self) -> np.ndarray | None:
@@ -111,7 +122,8 @@ def draw_casters(
         draw_one_by_one(programs(False), casters.subset(~batched), cull)
     part = casters if every else casters.subset(batched)
     assert part.batch is not None and part.rows is not None  # batched() said so
-    part.batch.draw(programs(True), part.rows, part.columns, part.culls, cull)
+    program = programs(True)
+    part.batch.draw(program, part.rows, part.columns, part.culls, cull, part.vectors, part.chunk)
 
 
 def draw_one_by_one(
@@ -144,13 +156,16 @@ def draw_one_by_one(
     columns = casters.columns
     assert columns.dtype == np.float32 and columns.flags.c_contiguous  # read by address
     base = columns.ctypes.data
-    set_matrix, bind, draw = gl.matrix, gl.bind, gl.draw
+    extras = [(program.FindUniform(name), values.ctypes.data) for name, values in casters.vectors]
+    set_matrix, set_vector, bind, draw = gl.matrix, gl.vector, gl.bind, gl.draw
     triangles = 0x0004  # GL_TRIANGLES
     side: str | bool | None = False  # not a side: the first caster sets culling
     for i, (buffers, culled) in enumerate(zip(casters.buffers, casters.culls, strict=True)):
         if not buffers.n_indices:
             continue
         set_matrix(location, 1, 0, base + 64 * i)
+        for extra, at in extras:
+            set_vector(extra, 1, at + 16 * i)
         if culled != side:
             cull(culled)
             side = culled

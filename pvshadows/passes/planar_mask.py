@@ -26,43 +26,22 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
-
-import numpy as np
 
 from pvshadows import _vtk as vtk
-from pvshadows.geometry.transforms import column_major
 from pvshadows.gl.binding import opengl_for
-from pvshadows.gl.buffers import TriangleBuffers
+from pvshadows.gl.caster_batch import chunk_rows
+from pvshadows.gl.caster_draws import CasterDraws, draw_casters
 from pvshadows.gl.colour_target import ColourTarget
 from pvshadows.gl.mask_target import MaskTexture
-from pvshadows.gl.programs import bind_program, compile_files
+from pvshadows.gl.programs import ProgramCache, bind_program, compile_files
+from pvshadows.passes.gl_state import FaceCulling
 
-
-@dataclass
-class FlatDraw:
-    """One caster as the planar pass draws it.
-
-    Attributes
-    ----------
-    buffers : TriangleBuffers
-        Its triangles on the GPU, in its centred model coordinates.
-    model_to_clip : numpy.ndarray
-        ``(4, 4)`` float64: camera projection, view, flattening and model.
-    plane_model : numpy.ndarray
-        ``(4,)`` the plane in the caster's model coordinates, positive on
-        the light's side.
-    flat_w : numpy.ndarray
-        ``(4,)`` the flattened point's ``w`` as a function of the model point.
-    transmittance : float, default: 0.0
-        Share of light each of its surfaces lets through (``1 - opacity``).
-    """
-
-    buffers: TriangleBuffers
-    model_to_clip: np.ndarray
-    plane_model: np.ndarray
-    flat_w: np.ndarray
-    transmittance: float = 0.0
+#: The ``vec4`` uniforms of each flattened caster besides its matrix
+#: (:attr:`~pvshadows.gl.caster_draws.CasterDraws.vectors`): the plane in its
+#: model coordinates (positive on the light's side), the flattened point's
+#: ``w`` as a function of the model point, and in ``x`` the share of light
+#: each of its surfaces lets through (``1 - opacity``).
+FLAT_VECTORS = ("planeModel", "flatW", "lightThrough")
 
 
 class PlanarMaskPass:
@@ -77,14 +56,38 @@ class PlanarMaskPass:
     def __init__(self, window: vtk.vtkOpenGLRenderWindow) -> None:
         self._window = window
         self._gl = opengl_for(window)
-        self._program: vtk.vtkShaderProgram | None = None
+        self._programs = ProgramCache(window)
         self._target: ColourTarget | None = None
+        self._chunk = 0
 
-    def _bind(self) -> vtk.vtkShaderProgram:
-        if self._program is None:
-            self._program = compile_files(self._window, "planar_flatten.vert", "planar_mask.frag")
-        bind_program(self._window, self._program)
-        return self._program
+    def _bind(self, rows: int) -> vtk.vtkShaderProgram:
+        """Bind the flattening program, built ``BATCHED`` so many rows when ``rows``."""
+        defines = {"BATCHED": rows} if rows else None
+        program = self._programs.get(
+            rows,
+            lambda: compile_files(
+                self._window, "planar_flatten.vert", "planar_mask.frag", defines=defines
+            ),
+        )
+        bind_program(self._window, program)
+        return program
+
+    def chunk(self, batch_chunk: int) -> int:
+        """Return the rows per chunk the batched program holds: its uniforms, or the batch's.
+
+        Parameters
+        ----------
+        batch_chunk : int
+            The batch's rows per chunk of matrices.
+
+        Returns
+        -------
+        int
+            At most ``batch_chunk``.
+        """
+        if not self._chunk:
+            self._chunk = chunk_rows(self._window, len(FLAT_VECTORS))
+        return min(batch_chunk, self._chunk)
 
     @contextmanager
     def _state(self, mask: MaskTexture) -> Iterator:
@@ -123,16 +126,22 @@ class PlanarMaskPass:
         with self._state(mask):
             pass
 
-    def draw(self, mask: MaskTexture, draws: list[FlatDraw]) -> None:
+    def draw(self, mask: MaskTexture, draws: CasterDraws) -> None:
         """Clear a light's mask to lit and multiply in each flattened caster's transmittance.
 
         Parameters
         ----------
         mask : MaskTexture
             The light's mask, the size of the viewport.
-        draws : list of FlatDraw
-            The casters.
+        draws : CasterDraws
+            The casters: matrices from their centred model coordinates through
+            the flattening to the camera's clip space, and :data:`FLAT_VECTORS`;
+            the casters of the snapshot's batch are drawn through it.
         """
+
+        def program(batched: bool) -> vtk.vtkShaderProgram:
+            return self._bind(draws.chunk if batched else 0)
+
         with self._state(mask) as gl:
             gl.glEnable(gl.GL_CLIP_DISTANCE0)
             gl.glEnable(gl.GL_CLIP_DISTANCE1)
@@ -140,24 +149,11 @@ class PlanarMaskPass:
             state = self._window.GetState()
             state.vtkglEnable(gl.GL_BLEND)
             state.vtkglBlendFunc(gl.GL_ZERO, gl.GL_SRC_COLOR)
-            program = self._bind()
-            # Every draw's values rounded to float32 at once, not draw by draw.
-            matrices = column_major(np.array([d.model_to_clip for d in draws]).reshape(-1, 4, 4))
-            planes = np.array([d.plane_model for d in draws], np.float32).tolist()
-            ws = np.array([d.flat_w for d in draws], np.float32).tolist()
-            for number, draw in enumerate(draws):
-                matrix = matrices[16 * number : 16 * number + 16]
-                program.SetUniformMatrix4x4v("modelToClip", 1, matrix)
-                program.SetUniform4f("planeModel", planes[number])
-                program.SetUniform4f("flatW", ws[number])
-                program.SetUniformf("transmittance", float(draw.transmittance))
-                draw.buffers.draw_triangles(program)
+            draw_casters(program, draws, FaceCulling(self._window))
 
     def release(self) -> None:
         """Release the program and the framebuffer."""
-        if self._program is not None:
-            self._program.ReleaseGraphicsResources(self._window)
-            self._program = None
+        self._programs.release()
         if self._target is not None:
             self._target.release()
             self._target = None

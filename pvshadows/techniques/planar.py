@@ -28,17 +28,24 @@ and reused otherwise.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from itertools import compress
 from typing import ClassVar
 
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows._cached import cached
+from pvshadows.geometry.transforms import column_major
+from pvshadows.gl.buffers import IndexedBuffers
+from pvshadows.gl.caster_batch import CasterBatch
+from pvshadows.gl.caster_draws import CasterDraws
 from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.mask_target import MaskTexture
 from pvshadows.model.plan import Cast, PlanarCast
 from pvshadows.model.report import PassReport
-from pvshadows.passes.planar_mask import FlatDraw, PlanarMaskPass
+from pvshadows.passes.planar_mask import FLAT_VECTORS, PlanarMaskPass
+from pvshadows.pipeline.reach import same_objects
 from pvshadows.scene.actor_state import ActorState
 from pvshadows.scene.planes import PlaneChoice, facing, flattening
 from pvshadows.scene.triangles import vtk_id
@@ -69,15 +76,21 @@ class _LightState:
     #: that may cast onto it flattened (:class:`FlatCasters`) and their keys and
     #: transmittances: the camera changes none of it.
     flattened: tuple | None = None
+    #: The casters last tested and on which snapshot, which may cast, those
+    #: between the plane and the light, their keys, and their gathering for the pass.
+    between: tuple | None = None
 
 
-def may_cast(caster: ActorState, plane: np.ndarray, light: np.ndarray) -> bool:
-    """Return whether any part of a caster lies between the plane and the light's height.
+def may_cast_boxes(bounds: np.ndarray, plane: np.ndarray, light: np.ndarray) -> np.ndarray:
+    """Return whether any part of each caster lies between the plane and the light's height.
+
+    Over a box a plane's height is greatest and least at corners found axis
+    by axis: every caster is tested at once from its world bounds.
 
     Parameters
     ----------
-    caster : ActorState
-        The caster (its world bounds are tested).
+    bounds : numpy.ndarray
+        ``(n, 2, 3)`` min and max corners.
     plane : numpy.ndarray
         ``(4,)`` the plane, positive on the light's side.
     light : numpy.ndarray
@@ -85,17 +98,24 @@ def may_cast(caster: ActorState, plane: np.ndarray, light: np.ndarray) -> bool:
 
     Returns
     -------
-    bool
-        ``False`` when its bounds lie wholly under the plane, or wholly
-        beyond a positional light's height above it.
+    numpy.ndarray
+        ``(n,)`` bool, ``False`` for bounds wholly under the plane or
+        wholly beyond a positional light's height above it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from pvshadows.techniques.planar import may_cast_boxes
+    >>> boxes = np.array([[[0, 0, 1.0], [1, 1, 2]], [[0, 0, -2.0], [1, 1, -1]]])
+    >>> may_cast_boxes(boxes, np.array([0, 0, 1.0, 0]), np.array([0, 0, 5.0, 1])).tolist()
+    [True, False]
     """
-    # Over a box, a plane's height is greatest and least at corners found axis by axis.
-    (x0, y0, z0), (x1, y1, z1) = caster.box
-    a, b, c, d = plane.tolist()
-    if max(a * x0, a * x1) + max(b * y0, b * y1) + max(c * z0, c * z1) + d <= 0.0:
-        return False
-    lowest = min(a * x0, a * x1) + min(b * y0, b * y1) + min(c * z0, c * z1) + d
-    return light[3] == 0.0 or lowest < float(plane @ light)
+    heights = np.asarray(bounds, dtype=np.float64).reshape(-1, 2, 3) * plane[:3]
+    highest = heights.max(axis=1).sum(axis=1) + plane[3]
+    casts = highest > 0.0
+    if light[3] != 0.0:
+        casts &= heights.min(axis=1).sum(axis=1) + plane[3] < float(plane @ light)
+    return casts
 
 
 def _camera_sees_unlit_side(view: FrameView, plane: np.ndarray) -> bool:
@@ -189,9 +209,18 @@ class FlatCasters:
     flats: np.ndarray
     planes_model: np.ndarray
     flat_ws: np.ndarray
+    #: The batch :meth:`gathered` last answered for, the buffers and the rows
+    #: (shared by the flattenings of the very same casters).
+    _gathered: list = field(default_factory=list, repr=False, compare=False)
 
     @classmethod
-    def of(cls, casters: list[ActorState], plane: np.ndarray, light: np.ndarray) -> FlatCasters:
+    def of(
+        cls,
+        casters: list[ActorState],
+        plane: np.ndarray,
+        light: np.ndarray,
+        gathered: list | None = None,
+    ) -> FlatCasters:
         """Flatten every caster onto ``plane`` from ``light``.
 
         Parameters
@@ -202,6 +231,9 @@ class FlatCasters:
             ``(4,)`` the world plane, positive on the light's side, ``|n| = 1``.
         light : numpy.ndarray
             ``(4,)`` the homogeneous world light.
+        gathered : list, optional
+            The :meth:`gathered` of an earlier flattening of the very same
+            casters, shared; a new one by default.
 
         Returns
         -------
@@ -209,7 +241,34 @@ class FlatCasters:
             Their flattenings, stacked.
         """
         models = np.array([caster.model_matrix() for caster in casters]).reshape(-1, 4, 4)
-        return cls(casters, *flatten_models(models, plane, light))
+        flattened = flatten_models(models, plane, light)
+        return cls(casters, *flattened, [] if gathered is None else gathered)
+
+    @cached
+    def vectors(self) -> tuple[tuple[str, np.ndarray], ...]:
+        """Each caster's :data:`~pvshadows.passes.planar_mask.FLAT_VECTORS`, float32."""
+        through = np.zeros((len(self.casters), 4), dtype=np.float32)
+        through[:, 0] = [caster.transmittance for caster in self.casters]
+        values = (self.planes_model, self.flat_ws, through)
+        arrays = [np.ascontiguousarray(v, dtype=np.float32).reshape(-1, 4) for v in values]
+        return tuple(zip(FLAT_VECTORS, arrays, strict=True))
+
+    def gathered(
+        self, context: FrameContext
+    ) -> tuple[list[IndexedBuffers], CasterBatch | None, np.ndarray | None]:
+        """Return the casters' buffers, the snapshot's batch and their rows in it.
+
+        Gathered once per batch (which only its casters' changes replace).
+        """
+        snapshot, buffers = context.snapshot, context.buffers
+        batch = buffers.batch_of(snapshot)
+        kept = self._gathered
+        if kept and kept[0] is batch:
+            return kept[1], batch, kept[2]
+        drawn: list[IndexedBuffers] = [buffers.get(caster) for caster in self.casters]
+        rows = None if batch is None else batch.rows[snapshot.caster_rows(self.casters)]
+        self._gathered[:] = [batch, drawn, rows]
+        return drawn, batch, rows
 
     def to_clip(self, world_to_clip: np.ndarray) -> np.ndarray:
         """Return each caster's matrix from model to clip coordinates, in float64.
@@ -243,28 +302,30 @@ class FlatCasters:
         return moved @ self.flats
 
 
-def flat_draws(flats: FlatCasters, context: FrameContext) -> list[FlatDraw]:
-    """Return each caster's draw for the planar pass, seen from this frame's camera.
+def flat_draws(flats: FlatCasters, context: FrameContext, chunk: int) -> CasterDraws:
+    """Return what the planar pass draws of the casters, seen from this frame's camera.
 
     Parameters
     ----------
     flats : FlatCasters
         The casters, flattened onto the plane.
     context : FrameContext
-        The frame (camera, actor buffers).
+        The frame (camera, actors, actor buffers).
+    chunk : int
+        Rows per chunk of the batched program's uniforms
+        (:meth:`~pvshadows.passes.planar_mask.PlanarMaskPass.chunk`).
 
     Returns
     -------
-    list of FlatDraw
-        One per caster.
+    CasterDraws
+        Their buffers, matrices through the flattening to the camera's clip
+        space and :data:`~pvshadows.passes.planar_mask.FLAT_VECTORS`; their
+        rows in the snapshot's batch of small casters, where it has one.
     """
-    to_clip = flats.to_clip(context.view.world_to_clip)
-    return [
-        FlatDraw(context.buffers.get(caster), matrix, plane, w, caster.transmittance)
-        for caster, matrix, plane, w in zip(
-            flats.casters, to_clip, flats.planes_model, flats.flat_ws, strict=True
-        )
-    ]
+    buffers, batch, rows = flats.gathered(context)
+    to_clip = column_major(flats.to_clip(context.view.world_to_clip)).reshape(-1, 4, 4)
+    culls = [None] * len(buffers)
+    return CasterDraws(buffers, to_clip, culls, batch, rows, flats.vectors, chunk)
 
 
 class PlanarTechnique:
@@ -338,6 +399,37 @@ class PlanarTechnique:
             )
         return self._draw(plan, context, state, choice)
 
+    @staticmethod
+    def _between(
+        plan: Cast,
+        context: FrameContext,
+        state: _LightState,
+        choice: PlaneChoice,
+        plane: np.ndarray,
+        light: np.ndarray,
+    ) -> tuple[list[ActorState], tuple, list]:
+        """Return the casters between the plane and the light, their keys and gathering.
+
+        Tested all at once over their stacked bounds (:func:`may_cast_boxes`);
+        the same casters as last time (a light that moved a little) are the
+        very list, keys and :meth:`FlatCasters.gathered` of last time.
+        """
+        assert choice.actor is not None
+        casters, plane_actor = plan.casters, choice.actor.actor
+        casts = may_cast_boxes(context.snapshot.bounds_of(casters), plane, light)
+        kept = state.between
+        if (
+            kept is not None
+            and kept[1] is context.snapshot
+            and np.array_equal(kept[2], casts)
+            and (kept[0] is casters or same_objects(kept[0], casters))
+        ):
+            return kept[3], kept[4], kept[5]
+        between = [c for c in compress(casters, casts.tolist()) if c.actor is not plane_actor]
+        keys = tuple((*c.key(), c.transmittance) for c in between)
+        state.between = (casters, context.snapshot, casts, between, keys, [])
+        return between, keys, state.between[5]
+
     def _draw(
         self, plan: Cast, context: FrameContext, state: _LightState, choice: PlaneChoice
     ) -> list[PassReport]:
@@ -360,17 +452,12 @@ class PlanarTechnique:
             )
             return [PassReport(_PASS, "skipped", "the camera sees the plane's unlit side")]
         if kept is None:
-            between = [
-                c
-                for c in plan.casters
-                if vtk_id(c.actor) != state.plane_actor and may_cast(c, plane, light)
-            ]
-            keys = tuple((*c.key(), c.transmittance) for c in between)
+            between, keys, gathered = self._between(plan, context, state, choice, plane, light)
             kept = state.flattened = (
                 plan,
                 light,
                 plane,
-                FlatCasters.of(between, plane, light),
+                FlatCasters.of(between, plane, light, gathered),
                 keys,
             )
         flats = kept[3]
@@ -395,7 +482,8 @@ class PlanarTechnique:
         record = PassReport(
             _PASS, "run", f"{len(casters)} of {len(plan.casters)} casters flattened onto {name}"
         )
-        draws = flat_draws(flats, context)
+        batch = context.buffers.batch_of(context.snapshot)
+        draws = flat_draws(flats, context, 0 if batch is None else self._pass.chunk(batch.chunk))
         with context.timer.measure(record):
             self._pass.draw(state.mask, draws)
         state.key, state.frame = key, context.frame
