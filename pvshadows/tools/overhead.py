@@ -184,7 +184,7 @@ def overhead_scenes(*, quick: bool = False, huge: bool = False) -> list[Overhead
     scenes = [OverheadScene("standard", kind) for kind in ("point", "spot", "directional")]
     scenes += [OverheadScene("standard", technique=name) for name in ("volume", "planar")]
     scenes += [OverheadScene("actors", actors=n) for n in (1, 50, 500, 1000)]
-    scenes.append(OverheadScene("actors", actors=500, technique="volume"))
+    scenes += [OverheadScene("actors", actors=500, technique=name) for name in ("volume", "planar")]
     scenes.append(OverheadScene("cold", actors=1, cold_after=1000))
     scenes += [OverheadScene("lights", lights=n) for n in (1, 4, 16)]
     counts = (10_000, 1_000_000, 10_000_000) if huge else (10_000, 1_000_000)
