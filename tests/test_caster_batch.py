@@ -142,11 +142,12 @@ def test_batched_volumes_count_the_same_shadows_as_one_by_one(
 ):
     options = {"technique": "volume", "zmode": zmode}
     _, _, alone, _ = _frames(kind, options, 10**9, monkeypatch, parallel)
-    monkeypatch.setattr(volume_batch, "MAX_CHUNK", chunk)
+    monkeypatch.setattr(caster_batch, "MAX_CHUNK", chunk)
     plotter, light, batched, _ = _frames(kind, options, 16, monkeypatch, parallel)
     (state,) = plotter.shadows._renderers[0].technique("volume")._lights.values()
     assert state.batch is not None and state.batch.in_batch.sum() >= 16
-    assert state.batch.chunk == min(chunk, volume_batch.volume_chunk_rows(plotter.ren_win))
+    rows = caster_batch.chunk_rows(plotter.ren_win, volume_batch.ROW_VECTORS, geometry=True)
+    assert state.batch.chunk == rows <= chunk
     for frame, (one, other) in enumerate(zip(alone, batched, strict=True)):
         assert np.array_equal(one, other), f"frame {frame}: {(one != other).any(-1).sum()} px"
     assert all(not np.array_equal(a, b) for a, b in itertools.pairwise(batched))
@@ -154,7 +155,7 @@ def test_batched_volumes_count_the_same_shadows_as_one_by_one(
 
 
 def test_a_volume_count_submits_one_multi_draw_per_chunk_of_rows(monkeypatch):
-    monkeypatch.setattr(volume_batch, "MAX_CHUNK", 8)
+    monkeypatch.setattr(caster_batch, "MAX_CHUNK", 8)
     plotter, _, _, _ = _frames("spot", {"technique": "volume"}, 16, monkeypatch)
     (state,) = plotter.shadows._renderers[0].technique("volume")._lights.values()
     batch = state.batch

@@ -43,8 +43,10 @@ _UNSIGNED_INT, _TRIANGLES = 0x1405, 0x0004
 _SIDE_NAMES = (None, "front", "back")
 
 
-def chunk_rows(window: vtk.vtkOpenGLRenderWindow, vectors: int = 0) -> int:
-    """Return how many casters' uniforms the vertex stage can hold in one set of arrays.
+def chunk_rows(
+    window: vtk.vtkOpenGLRenderWindow, vectors: int = 0, *, geometry: bool = False
+) -> int:
+    """Return how many casters' uniforms a stage can hold in one set of arrays.
 
     Parameters
     ----------
@@ -52,13 +54,15 @@ def chunk_rows(window: vtk.vtkOpenGLRenderWindow, vectors: int = 0) -> int:
         A window whose context is current.
     vectors : int, default: 0
         ``vec4`` uniforms per caster besides its matrix.
+    geometry : bool, default: False
+        Whether the geometry stage reads them (the vertex stage otherwise).
 
     Returns
     -------
     int
-        ``GL_MAX_VERTEX_UNIFORM_COMPONENTS``, less room for the pass's other
-        uniforms, over the floats of one caster's uniforms, at most
-        :data:`MAX_CHUNK` and at least 8.
+        ``GL_MAX_VERTEX_UNIFORM_COMPONENTS`` (or ``GL_MAX_GEOMETRY_...``),
+        less room for the pass's other uniforms, over the floats of one
+        caster's uniforms, at most :data:`MAX_CHUNK` and at least 8.
 
     Examples
     --------
@@ -70,7 +74,10 @@ def chunk_rows(window: vtk.vtkOpenGLRenderWindow, vectors: int = 0) -> int:
     True
     """
     gl = opengl_for(window)
-    components = int(gl.glGetIntegerv(gl.GL_MAX_VERTEX_UNIFORM_COMPONENTS))
+    limit = (
+        gl.GL_MAX_GEOMETRY_UNIFORM_COMPONENTS if geometry else gl.GL_MAX_VERTEX_UNIFORM_COMPONENTS
+    )
+    components = int(gl.glGetIntegerv(limit))
     return int(min(MAX_CHUNK, max(8, (components - 64) // (16 + 4 * vectors))))
 
 

@@ -24,47 +24,16 @@ import numpy as np
 
 from pvshadows import _vtk as vtk
 from pvshadows.geometry.volume_casters import VolumeMesh
-from pvshadows.gl.binding import opengl_for
 from pvshadows.gl.buffers import IndexedBuffers
+from pvshadows.gl.caster_batch import chunk_rows
 
 #: Volume meshes of at most this many triangles go into the batch; a bigger
 #: one is drawn on its own, where its draw call is a small part of its cost.
 SMALL = 65_536
 #: A light's casters are batched from this many small closed ones on.
 MIN_VOLUMES = 16
-#: The most rows one chunk of uniforms holds.
-MAX_CHUNK = 256
-#: Uniform components one row takes: a matrix, a light and a reach (a ``vec4`` slot).
-_ROW_COMPONENTS = 16 + 4 + 4
-
-
-def volume_chunk_rows(window: vtk.vtkOpenGLRenderWindow) -> int:
-    """Return how many casters' uniforms the extruding geometry stage can hold at once.
-
-    Parameters
-    ----------
-    window : vtk.vtkOpenGLRenderWindow
-        A window whose context is current.
-
-    Returns
-    -------
-    int
-        ``GL_MAX_GEOMETRY_UNIFORM_COMPONENTS``, less room for the stage's
-        other uniforms, over the components of one row; at most
-        :data:`MAX_CHUNK` and at least 8.
-
-    Examples
-    --------
-    >>> import pyvista as pv
-    >>> from pvshadows.gl.volume_batch import volume_chunk_rows
-    >>> pl = pv.Plotter(off_screen=True)
-    >>> pl.ren_win.Render()
-    >>> 8 <= volume_chunk_rows(pl.ren_win) <= 256
-    True
-    """
-    gl = opengl_for(window)
-    components = int(gl.glGetIntegerv(gl.GL_MAX_GEOMETRY_UNIFORM_COMPONENTS))
-    return int(min(MAX_CHUNK, max(8, (components - 64) // _ROW_COMPONENTS)))
+#: ``vec4`` uniforms of each row besides its matrix: its light and its reach.
+ROW_VECTORS = 2
 
 
 def batchable(meshes: Sequence[VolumeMesh | None]) -> list[bool]:
@@ -132,7 +101,8 @@ class VolumeBatch:
     in_batch : numpy.ndarray
         ``(n,)`` bool, per row: its volume is in the batch.
     chunk : int
-        Rows per chunk of uniforms (:func:`volume_chunk_rows`).
+        Rows per chunk of uniforms
+        (:func:`~pvshadows.gl.caster_batch.chunk_rows` of the geometry stage).
     calls : int
         Runs drawn so far, one multi-draw each (a test counts them).
     """
@@ -141,7 +111,7 @@ class VolumeBatch:
         self, window: vtk.vtkOpenGLRenderWindow, meshes: Sequence[VolumeMesh | None]
     ) -> None:
         self.meshes = tuple(meshes)
-        self.chunk = volume_chunk_rows(window)
+        self.chunk = chunk_rows(window, ROW_VECTORS, geometry=True)
         self.calls = 0
         self.in_batch = np.array(batchable(meshes), dtype=bool)
         taken = [(row, m) for row, m in enumerate(meshes) if m is not None and self.in_batch[row]]
