@@ -46,9 +46,7 @@ from pvshadows import _vtk as vtk
 from pvshadows.geometry.silhouette import volume_geometry
 from pvshadows.geometry.transforms import column_major
 from pvshadows.geometry.volume_casters import VolumeMesh
-from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.buffers import IndexedBuffers
-from pvshadows.gl.caster_batch import CasterBatch
 from pvshadows.gl.caster_draws import CasterDraws
 from pvshadows.gl.frame_block import LightEntry
 from pvshadows.gl.mask_target import MaskTexture, VolumeTarget
@@ -56,7 +54,6 @@ from pvshadows.gl.volume_batch import VolumeBatch, batchable
 from pvshadows.model.plan import Cast, VolumeCast
 from pvshadows.model.report import PassReport
 from pvshadows.passes.volume_stencil import (
-    StencilSide,
     VolumeDraw,
     VolumePasses,
     VolumeRows,
@@ -69,6 +66,11 @@ from pvshadows.scene.triangles import ActorTriangles, vtk_id
 from pvshadows.shaders.shading import LightShading
 from pvshadows.techniques.base import FrameContext, LightFrame
 from pvshadows.techniques.screen_mask import held_for, mask_holds, mask_shading, mask_uniforms
+from pvshadows.techniques.volume_draws import (
+    DepthActors,
+    KeptDraws,
+    lights_in_models,
+)
 from pvshadows.techniques.volume_fallback import Fallback, OpenCasterFallbacks, combine_shadings
 from pvshadows.techniques.volume_light import (
     finite_reach,
@@ -104,7 +106,7 @@ class _LightState:
     #: hidden-line removal (:meth:`VolumeTechnique.again` compares them).
     held: tuple | None = None
     #: The last count's draws, whatever the camera and, extruded on the GPU, the light.
-    drawn: _Drawn | None = None
+    drawn: KeptDraws | None = None
     #: Closed casters, and their keys and transmittances (part of the mask's key).
     closed_key: tuple = (None, ())
     #: The small volumes of its closed casters in one vertex array, if enough.
@@ -127,149 +129,6 @@ class _LightState:
         if self.batch is not None:
             self.batch.release()
             self.batch = None
-
-
-@dataclass
-class _Drawn:
-    """What a light's stencil count draws, kept while its closed casters and counting hold.
-
-    A camera that moves changes only each caster's model-to-clip matrix,
-    and a light that moves the light in each caster's frame: both are
-    taken in one product over the stacked matrices (:meth:`rows`). The
-    batches, index ranges and draws stay as long as the closed casters
-    (the very list), the z-mode (which caps are drawn), the parallel
-    projection's reach and the extrusion do; volumes built on the CPU
-    follow the light, so theirs stay only for the same cast. Casters that
-    moved but cast the same volumes (the same meshes, handedness and
-    transmittances, extruded to infinity on the GPU) keep them too, their
-    matrices stacked again (:meth:`take`).
-    """
-
-    plan: Cast
-    closed: list[tuple[ActorState, VolumeMesh]]
-    zmode: str
-    reach: float
-    extrude: str
-    batches: list[list[tuple]]
-    passing: list[float]
-    draws: list[list[VolumeDraw]]
-    #: Each count batch's draws by winding, through the light's volume batch or alone.
-    sides: list[list[StencilSide]]
-    #: The closed casters' model matrices and their inverses, stacked ``(n, 4, 4)``,
-    #: and how far each one's volume reaches (0: to infinity).
-    models: np.ndarray
-    inverses: np.ndarray
-    reaches: np.ndarray
-    #: The light the draws were last read for, and its place in each caster's frame.
-    light: np.ndarray
-    lights: np.ndarray
-
-    def holds(
-        self,
-        plan: Cast,
-        closed: list[tuple[ActorState, VolumeMesh]],
-        zmode: str,
-        reach: float,
-        extrude: str,
-    ) -> bool:
-        """Return whether the draws serve this cast (:meth:`take` its casters where they moved)."""
-        if (self.zmode, self.reach, self.extrude) != (zmode, reach, extrude):
-            return False
-        if self.plan is plan or (extrude == "gpu" and self.closed is closed):
-            return True
-        return extrude == "gpu" and not reach and _same_volumes(closed, self.closed)
-
-    def take(
-        self, closed: list[tuple[ActorState, VolumeMesh]], models: np.ndarray, inverses: np.ndarray
-    ) -> None:
-        """Take casters that cast the same volumes from elsewhere: their stacked matrices."""
-        self.closed, self.models, self.inverses = closed, models, inverses
-        self.lights = lights_in_models(inverses, self.light)
-
-    def rows(self, camera: np.ndarray, light: np.ndarray) -> VolumeRows:
-        """Return what the draws read for this camera and light."""
-        if not np.array_equal(light, self.light):
-            self.light, self.lights = light, lights_in_models(self.inverses, light)
-        return VolumeRows(camera @ self.models, self.lights, self.reaches)
-
-
-def lights_in_models(inverses: np.ndarray, light: np.ndarray) -> np.ndarray:
-    """Return a homogeneous light in the frames of many models at once.
-
-    Parameters
-    ----------
-    inverses : numpy.ndarray
-        ``(n, 4, 4)`` the models' inverse matrices.
-    light : numpy.ndarray
-        ``(4,)`` the light in world coordinates: ``(x, y, z, 1)`` or ``(d, 0)``.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``(n, 4)``; a point's ``w`` made 1.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from pvshadows.geometry.transforms import translation
-    >>> from pvshadows.techniques.volume import lights_in_models
-    >>> inverses = np.linalg.inv([translation([1.0, 0.0, 0.0])])
-    >>> lights_in_models(inverses, np.array([0.0, 0.0, 2.0, 1.0])).tolist()
-    [[-1.0, 0.0, 2.0, 1.0]]
-    """
-    in_models = inverses @ light
-    positional = in_models[:, 3] != 0.0
-    in_models[positional] /= in_models[positional, 3:4]
-    return in_models
-
-
-@dataclass(frozen=True)
-class _DepthActors:
-    """What the depth pre-pass draws of one snapshot: the actors that hide what is behind them.
-
-    ``models`` stacks their model matrices ``(n, 4, 4)``, so that a camera
-    that moves multiplies them in one go; ``rows`` holds each one's row in
-    ``batch`` (-1 for an actor drawn on its own), ``None`` without a batch.
-    """
-
-    snapshot: Snapshot | None
-    hidden: bool
-    batch: CasterBatch | None
-    keys: tuple
-    models: np.ndarray
-    buffers: list[IndexedBuffers]
-    culls: list[str | None]
-    rows: np.ndarray | None
-    #: Per actor of the snapshot, its number among those drawn, -1 for one left out.
-    numbers: list[int]
-
-    def patched(
-        self, snapshot: Snapshot, renderer: vtk.vtkRenderer, buffers: ActorBuffers
-    ) -> _DepthActors | None:
-        """Return this over a snapshot that follows its own, or ``None`` to gather afresh.
-
-        The replaced actors are patched in, as long as each is drawn or left
-        out as before.
-        """
-        keys, models, drawn = list(self.keys), self.models.copy(), list(self.buffers)
-        for row, state in snapshot.patches(ALL_ACTORS):
-            number = self.numbers[row]
-            if (number >= 0) != hides_what_is_behind(state, renderer):
-                return None
-            if number >= 0:
-                keys[number], models[number] = state.key(), state.model_matrix()
-                drawn[number] = buffers.get(state)
-        return _DepthActors(
-            snapshot,
-            self.hidden,
-            self.batch,
-            tuple(keys),
-            models,
-            drawn,
-            self.culls,
-            self.rows,
-            self.numbers,
-        )
 
 
 class VolumeTechnique:
@@ -295,7 +154,7 @@ class VolumeTechnique:
         #: Per snapshot: every actor's part of a mask's key; and, per hidden-line
         #: removal too, the actors the depth pre-pass draws and their keys.
         self._actors_of: tuple = (None, ())
-        self._depth_of = _DepthActors(None, False, None, (), np.zeros((0, 4, 4)), [], [], None, [])
+        self._depth_of = DepthActors(None, False, None, (), np.zeros((0, 4, 4)), [], [], None, [])
         self._fallbacks = OpenCasterFallbacks(window)
         self._context: FrameContext | None = None
         #: The volume casts of the last :meth:`keep_only`.
@@ -390,7 +249,7 @@ class VolumeTechnique:
             reaches = np.zeros(len(closed))
             for draw in (d for batch in draws for d in batch):
                 reaches[draw.row] = draw.extrude_to
-            drawn = state.drawn = _Drawn(
+            drawn = state.drawn = KeptDraws(
                 plan, closed, zmode, reach, extrude, plan_batches, passing, draws, sides,
                 models, inverses, reaches, light, lights,
             )  # fmt: skip
@@ -439,7 +298,7 @@ class VolumeTechnique:
             state.closed_key = (closed, tuple((*c.key(), c.transmittance) for c, _ in closed))
         return state.closed_key[1]
 
-    def _depth_actors(self, context: FrameContext) -> _DepthActors:
+    def _depth_actors(self, context: FrameContext) -> DepthActors:
         """Return what the depth pre-pass draws: the actors that hide what is behind them.
 
         Worked out once per snapshot, hidden-line removal and batch of
@@ -462,7 +321,7 @@ class VolumeTechnique:
             if batch is not None:
                 among = snapshot.caster_rows_among(actors)
                 rows = np.where(among >= 0, batch.rows[among], -1)
-            patched = _DepthActors(
+            patched = DepthActors(
                 snapshot,
                 hidden,
                 batch,
@@ -842,22 +701,6 @@ class VolumeTechnique:
         self._release_unused([])
         self._fallbacks.release()
         self._passes.release()
-
-
-def _same_volumes(
-    closed: list[tuple[ActorState, VolumeMesh]], before: list[tuple[ActorState, VolumeMesh]]
-) -> bool:
-    """Tell whether closed casters cast the volumes of others, wherever they stand.
-
-    The same meshes in the same order, each caster as mirrored and letting
-    as much light through as the one before it.
-    """
-    return len(closed) == len(before) and all(
-        mesh is was
-        and caster.mirrored == then.mirrored
-        and caster.transmittance == then.transmittance
-        for (caster, mesh), (then, was) in zip(closed, before, strict=True)
-    )
 
 
 def _same_casters(cast: Cast, before: Cast) -> bool:
