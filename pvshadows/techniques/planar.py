@@ -28,6 +28,7 @@ and reused otherwise.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from itertools import compress
 from typing import ClassVar
@@ -302,7 +303,9 @@ class FlatCasters:
         return moved @ self.flats
 
 
-def flat_draws(flats: FlatCasters, context: FrameContext, chunk: int) -> CasterDraws:
+def flat_draws(
+    flats: FlatCasters, context: FrameContext, rows_per_chunk: Callable[[int], int]
+) -> CasterDraws:
     """Return what the planar pass draws of the casters, seen from this frame's camera.
 
     Parameters
@@ -311,8 +314,8 @@ def flat_draws(flats: FlatCasters, context: FrameContext, chunk: int) -> CasterD
         The casters, flattened onto the plane.
     context : FrameContext
         The frame (camera, actors, actor buffers).
-    chunk : int
-        Rows per chunk of the batched program's uniforms
+    rows_per_chunk : callable
+        Given the batch's rows per chunk, the batched program's
         (:meth:`~pvshadows.passes.planar_mask.PlanarMaskPass.chunk`).
 
     Returns
@@ -324,6 +327,7 @@ def flat_draws(flats: FlatCasters, context: FrameContext, chunk: int) -> CasterD
     """
     buffers, batch, rows = flats.gathered(context)
     to_clip = column_major(flats.to_clip(context.view.world_to_clip)).reshape(-1, 4, 4)
+    chunk = 0 if batch is None else rows_per_chunk(batch.chunk)
     culls = [None] * len(buffers)
     return CasterDraws(buffers, to_clip, culls, batch, rows, flats.vectors, chunk)
 
@@ -482,8 +486,7 @@ class PlanarTechnique:
         record = PassReport(
             _PASS, "run", f"{len(casters)} of {len(plan.casters)} casters flattened onto {name}"
         )
-        batch = context.buffers.batch_of(context.snapshot)
-        draws = flat_draws(flats, context, 0 if batch is None else self._pass.chunk(batch.chunk))
+        draws = flat_draws(flats, context, self._pass.chunk)
         with context.timer.measure(record):
             self._pass.draw(state.mask, draws)
         state.key, state.frame = key, context.frame

@@ -233,7 +233,6 @@ class VolumeTechnique:
         if drawn is not None and drawn.holds(plan, closed, zmode, reach, extrude):
             if drawn.closed is not closed:
                 drawn.take(closed, *self._stacked(closed))
-            plan_batches, passing, draws = drawn.batches, drawn.passing, drawn.draws
             reports.extend(_cpu_reused(closed, extrude))
         else:
             plan_batches, passing = translucent_batches(closed)
@@ -247,14 +246,14 @@ class VolumeTechnique:
             volume_batch = state.batch_for(self._window, meshes)
             sides = [stencil_sides(batch, volume_batch) for batch in draws]
             reaches = np.zeros(len(closed))
-            for draw in (d for batch in draws for d in batch):
+            for draw in (d for group in draws for d in group):
                 reaches[draw.row] = draw.extrude_to
             drawn = state.drawn = KeptDraws(
                 plan, closed, zmode, reach, extrude, plan_batches, passing, draws, sides,
                 models, inverses, reaches, light, lights,
             )  # fmt: skip
         rows = drawn.rows(camera, light)
-        bodies = [sum(e - s for _, s, e in batch) for batch in plan_batches]
+        bodies = drawn.bodies
         record = PassReport(
             f"stencil count ({zmode}, {extrude} extrusion)",
             "run",
@@ -265,11 +264,11 @@ class VolumeTechnique:
         assert self._target is not None
         with context.timer.measure(record):
             self._passes.count(
-                self._target, state.mask, drawn.sides, rows, zmode, passing, state.batch
+                self._target, state.mask, drawn.sides, rows, zmode, drawn.passing, state.batch
             )
         reports.append(record)
         state.key, state.frame, state.zmode = key, context.frame, zmode
-        state.draws, state.rows = [draw for batch in draws for draw in batch], rows
+        state.draws, state.rows = drawn.every, rows
         return reports + self._fallbacks.update(state.fallback, context)
 
     def _actors_key(self, snapshot: Snapshot) -> tuple:

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pvshadows import _vtk as vtk
+from pvshadows._cached import cached
 from pvshadows.geometry.volume_casters import VolumeMesh
 from pvshadows.gl.actor_buffers import ActorBuffers
 from pvshadows.gl.buffers import IndexedBuffers
@@ -79,6 +80,16 @@ class KeptDraws:
         """Take casters that cast the same volumes from elsewhere: their stacked matrices."""
         self.closed, self.models, self.inverses = closed, models, inverses
         self.lights = lights_in_models(inverses, self.light)
+
+    @cached
+    def every(self) -> list[VolumeDraw]:
+        """The draws of every batch in one list (what ``show_volumes`` draws)."""
+        return [draw for batch in self.draws for draw in batch]
+
+    @cached
+    def bodies(self) -> list[int]:
+        """The bodies each batch counts."""
+        return [sum(end - start for _, start, end in batch) for batch in self.batches]
 
     def rows(self, camera: np.ndarray, light: np.ndarray) -> VolumeRows:
         """Return what the draws read for this camera and light."""
